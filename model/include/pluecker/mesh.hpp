@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// Triangle meshes: the built-in scenes (teapot, spheres, UV sphere) and
+// OBJ/PLY loading through Assimp. Every scene that reaches a BVH or a
+// renderer goes through make_scene(), which normalises it into [-1,1]^3,
+// the coordinate range of the fixed-point format (see fixed.hpp).
+//
+// Triangle ids are positions in Mesh::triangles; they are stable for a given
+// input (same file or same spec gives the same order).
+#pragma once
+
+#include "pluecker/geometry.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pluecker {
+
+enum class MaterialKind : std::uint8_t { Diffuse, Mirror, Glass };
+
+struct Material {
+    MaterialKind kind = MaterialKind::Diffuse;
+    Vec3 color{0.8f};
+    float ior = 1.5f;  // index of refraction, used by Glass
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Vec3> vertices;
+    std::vector<std::array<std::uint32_t, 3>> triangles;
+    std::vector<std::uint16_t> tri_material;  // one per triangle, index into materials
+    std::vector<Material> materials;          // at least one
+
+    // Bounds of all vertices (empty box when there are none).
+    Box bounds() const;
+};
+
+// Loads an OBJ or PLY file (chosen by extension, case-insensitive) with
+// Assimp, triangulating polygons (an n-gon gives n-2 consecutive triangles)
+// and welding identical vertices. All meshes of the file are merged in
+// Assimp's mesh order. Degenerate and duplicate triangles are kept (Assimp's
+// FindDegenerates step is not run); point and line primitives are skipped.
+// Throws InputError naming the file for: a missing file, an unknown
+// extension, an Assimp failure (with Assimp's reason), an empty mesh, a
+// non-finite coordinate (with the vertex index) and an index out of range.
+Mesh load_mesh_file(const std::string& path);
+
+// The Utah teapot: Newell's 32 bicubic Bezier patches, each tessellated into
+// t x t quads of two triangles; triangles that collapse at the lid and bottom
+// poles are dropped, so t = 6 gives 2,256 triangles (the technical report's
+// teapot has 2,262). Y is up. Not normalised. t in [1, 256].
+Mesh make_teapot(int tessellation = 6);
+
+// Diffuse, mirror and glass (ior 1.5) UV spheres of 8,192 triangles each
+// over a floor quad: 24,578 triangles, the count of the report's 'Spheres'.
+// materials[0] is the floor. Y is up. Not normalised.
+Mesh make_spheres();
+
+// A closed unit UV sphere (pole triangle fans) of about approx_triangles
+// triangles (at least 6; relative error below 1% from 1,000 up).
+// Throws InputError for 0 or more than 200,000,000.
+Mesh make_uv_sphere(std::size_t approx_triangles);
+
+// "teapot" | "spheres" | "sphere:N" | a mesh file path. The result is
+// normalised with normalize_to_cube and named after the spec.
+// Throws InputError naming the spec when it is malformed.
+Mesh make_scene(const std::string& spec);
+
+// Uniform scale and translation so the bounds are centred on the origin and
+// the largest extent spans exactly [-1,1]; every vertex ends in [-1,1]^3.
+// Throws InputError for a mesh without vertices or with zero extent.
+void normalize_to_cube(Mesh& m);
+
+}  // namespace pluecker
