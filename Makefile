@@ -52,3 +52,92 @@ bench: build
 
 clean:
 	rm -rf build out
+
+# ---- Verilator harness (sim/; owner: sim helper) --------------------------
+# make sim         builds build/sim/<C>x<D>[_nearest]/pluecker_sim
+# make sim-query   streams QUERIES (default: generated) through the RTL, --check
+# make sim-render  hardware-in-the-loop render of SCENE at SIM_SIZE into out/
+# make sim-bench   RTL throughput (queries per second)
+# Variables: COORD_BITS, DIR_BITS, MODE (conservative|nearest), SIM_TAG_BITS.
+MODE         ?= conservative
+SIM_TAG_BITS ?= 8
+SIM_SIZE     ?= $(SIZE)
+SIM_N        ?= 2000000
+SIM_DIR      := build/sim/$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
+SIM_BIN      := $(SIM_DIR)/pluecker_sim
+SIM_VARS     := COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
+                MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS)
+
+.PHONY: sim sim-query sim-render sim-bench
+
+sim: build
+	@$(SIM_VARS) $(ENV) sim/build.sh
+
+sim-query: sim
+	@if [ -n "$(QUERIES)" ]; then q="$(QUERIES)"; else \
+	  q=$(SIM_DIR)/queries.txt; $(SIM_BIN) gen --n 20000 --kind mixed --out $$q; fi; \
+	$(SIM_BIN) query --check $$q > $(SIM_DIR)/answers.txt && echo "sim-query: answers in $(SIM_DIR)/answers.txt"
+
+sim-render: sim
+	@mkdir -p $(OUT)
+	$(SIM_BIN) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa \
+	  --out $(OUT)/$(SCENE)_rtl_$(notdir $(SIM_DIR)).png --stats $(OUT)/$(SCENE)_rtl_$(notdir $(SIM_DIR)).json
+
+sim-bench: sim
+	$(SIM_BIN) bench --n $(SIM_N)
+# ---- end of the Verilator harness block -----------------------------------
+
+# ---- FPGA flow: ECP5 LFE5U-85F synthesis and place-and-route ---------------
+# (owned by the FPGA flow; scripts/synth.py, fpga/). Results per width pair in
+# out/synth/<C>x<D>/summary.json. Extra flags: SYNTH_FLAGS=--no-pnr etc.
+SEEDS       ?= 3
+SPEEDS      ?= 6 8
+FREQ        ?= 250
+SYNTH_FLAGS ?=
+
+.PHONY: synth synth-smoke
+
+synth: setup
+	$(ENV) python scripts/synth.py --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
+	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+
+# Default widths, one seed, speed grade 8: a quick check that the RTL still
+# synthesises, places and routes (out/synth-smoke/).
+synth-smoke: setup
+	$(ENV) python scripts/synth.py --smoke --freq $(FREQ) $(SYNTH_FLAGS)
+# ---- end of FPGA flow -------------------------------------------------------
+
+# ---- Hostile input: fuzzing, sanitizers, the hostile-input table ------------
+# (owned by the hostile-input helper; scripts/fuzz.sh, model/fuzz/,
+# model/tests/test_hostile.cpp, scripts/hostile_table.py)
+# make fuzz            libFuzzer targets of model/fuzz/ (clang, ASan + UBSan) in
+#                      build/fuzz, FUZZ_SECONDS each; findings in build/fuzz/artifacts/
+# make test-sanitize   the whole ctest suite built with ASan + UBSan (gcc) in
+#                      build/sanitize; SANITIZE_CTEST_ARGS filters (e.g. -LE slow)
+# make hostile-table   docs/hostile-input.md from real runs of the CLI
+FUZZ_SECONDS        ?= 60
+SANITIZE_BUILD      := build/sanitize
+SANITIZE_CTEST_ARGS ?=
+
+.PHONY: fuzz test-sanitize hostile-table
+
+fuzz: setup
+	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_JOBS=$(JOBS) scripts/fuzz.sh
+
+test-sanitize: setup
+	@mkdir -p build; start=$$(date +%s); \
+	cmake -S model -B $(SANITIZE_BUILD) -DPLUECKER_SANITIZE=ON -DPLUECKER_PYTHON=OFF \
+	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+	  > $(SANITIZE_BUILD).configure.log 2>&1 || { cat $(SANITIZE_BUILD).configure.log; exit 1; }; \
+	cmake --build $(SANITIZE_BUILD) -j$(JOBS) || exit 1; \
+	built=$$(date +%s); \
+	cd $(SANITIZE_BUILD) && \
+	ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	ctest --output-on-failure -j$(JOBS) $(SANITIZE_CTEST_ARGS); rc=$$?; \
+	done=$$(date +%s); \
+	echo "test-sanitize: build $$((built - start)) s, ctest $$((done - built)) s"; exit $$rc
+
+hostile-table: build
+	$(ENV) python scripts/hostile_table.py --cli $(CLI)
+# ---- end of hostile input ----------------------------------------------------

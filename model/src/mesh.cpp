@@ -11,10 +11,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
+#include <string_view>
 
 namespace pluecker {
 
@@ -27,13 +31,13 @@ Box Mesh::bounds() const {
 void normalize_to_cube(Mesh& m) {
     if (m.vertices.empty()) throw InputError(m.name + ": empty mesh, cannot normalise");
     const Box b = m.bounds();
-    const Vec3 e = b.extent();
-    const double ext = std::max({double(e.x), double(e.y), double(e.z)});
+    double ext = 0.0;  // in double: hi - lo of two floats is exact
+    for (int a = 0; a < 3; ++a) ext = std::max(ext, double(b.hi[a]) - double(b.lo[a]));
     if (!(ext > 0.0) || !std::isfinite(ext))
         throw InputError(m.name + ": mesh has zero or non-finite extent, cannot normalise");
-    // In double: the centre and lo - c are exact, so the largest axis lands on
-    // exactly -1 and +1 after rounding to float; the clamp only guards the
-    // other axes against a last-ulp overshoot.
+    // In double the extent, the centre c and lo - c are exact, so the largest
+    // axis maps to -1 and +1 within an ulp of double and rounds to exactly
+    // -1.0f and 1.0f; the clamp only guards against a last-ulp overshoot.
     const double s = 2.0 / ext;
     double c[3];
     for (int a = 0; a < 3; ++a) c[a] = 0.5 * (double(b.lo[a]) + double(b.hi[a]));
@@ -63,20 +67,203 @@ void check_readable(const std::string& path) {
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": empty mesh (empty file)");
 }
 
-// Checked before any post-processing step runs, so a NaN never reaches
-// Assimp's vertex welding. Indices are those of Assimp's raw import: for a
-// PLY file, the file's vertex index; for OBJ, one vertex per face corner.
-void check_finite(const aiScene& sc, const std::string& path) {
+// ---------------------------------------------------------------------------
+// PLY structure check. Assimp 5.2's PLY reader loops forever on a header
+// without end_header and silently reads past the end of a truncated body
+// (zeros or garbage become vertices and faces), so the header and the body
+// layout are walked here first; the values themselves are left to Assimp.
+
+struct PlyProperty {
+    int size = 0;        // bytes of a scalar, or of a list's items
+    int count_size = 0;  // bytes of a list's count; 0 for a scalar
+};
+struct PlyElement {
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<PlyProperty> props;
+};
+struct PlyHeader {
+    std::string format;
+    std::vector<PlyElement> elements;
+    std::size_t body = 0;  // offset of the first body byte
+};
+
+int ply_type_size(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    return 0;
+}
+
+PlyHeader parse_ply_header(const std::string& data, const std::string& path) {
+    PlyHeader h;
+    std::size_t pos = 0;
+    int line_no = 0;
+    auto fail = [&](const std::string& what) {
+        throw InputError(path + ":" + std::to_string(line_no) + ": PLY header: " + what);
+    };
+    for (;;) {
+        const std::size_t nl = data.find('\n', pos);
+        ++line_no;
+        if (nl == std::string::npos) fail("no end_header line (truncated file?)");
+        std::string line = data.substr(pos, nl - pos);
+        pos = nl + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream ls(line);
+        std::string kw;
+        ls >> kw;
+        if (line_no == 1) {
+            if (kw != "ply") fail("first line is not 'ply'");
+        } else if (kw == "format") {
+            ls >> h.format;
+            if (h.format != "ascii" && h.format != "binary_little_endian" && h.format != "binary_big_endian")
+                fail("unknown format '" + h.format + "'");
+        } else if (kw == "element") {
+            PlyElement e;
+            if (!(ls >> e.name >> e.count)) fail("malformed element line");
+            h.elements.push_back(e);
+        } else if (kw == "property") {
+            if (h.elements.empty()) fail("property before any element");
+            std::string type, name;
+            PlyProperty p;
+            ls >> type;
+            if (type == "list") {
+                std::string ct, it;
+                ls >> ct >> it;
+                p.count_size = ply_type_size(ct);
+                p.size = ply_type_size(it);
+                if (p.count_size == 0 || p.size == 0) fail("unknown list type '" + ct + " " + it + "'");
+            } else {
+                p.size = ply_type_size(type);
+                if (p.size == 0) fail("unknown property type '" + type + "'");
+            }
+            h.elements.back().props.push_back(p);
+        } else if (kw == "end_header") {
+            break;
+        } else if (kw != "comment" && kw != "obj_info" && !kw.empty()) {
+            fail("unknown keyword '" + kw + "'");
+        }
+    }
+    if (h.format.empty()) throw InputError(path + ": PLY header has no format line");
+    h.body = pos;
+    return h;
+}
+
+std::uint64_t read_uint(const char* p, int size, bool big_endian) {
+    std::uint64_t v = 0;
+    for (int i = 0; i < size; ++i) {
+        const auto byte = static_cast<unsigned char>(p[big_endian ? i : size - 1 - i]);
+        v = (v << 8) | byte;
+    }
+    return v;
+}
+
+[[noreturn]] void ply_truncated(const std::string& path, const PlyElement& e, std::uint64_t item) {
+    throw InputError(path + ": truncated PLY: element '" + e.name + "' item " + std::to_string(item) + " of " +
+                     std::to_string(e.count) + " runs past the end of the file");
+}
+
+void walk_ply_binary(const std::string& data, const PlyHeader& h, const std::string& path) {
+    const bool big = h.format == "binary_big_endian";
+    std::uint64_t pos = h.body;
+    const std::uint64_t end = data.size();
+    for (const PlyElement& e : h.elements) {
+        const bool fixed = std::all_of(e.props.begin(), e.props.end(), [](auto& p) { return p.count_size == 0; });
+        if (fixed) {  // one multiplication instead of a walk
+            std::uint64_t stride = 0;
+            for (const PlyProperty& p : e.props) stride += std::uint64_t(p.size);
+            if (stride != 0 && e.count > (end - pos) / stride) ply_truncated(path, e, (end - pos) / stride);
+            pos += stride * e.count;
+            continue;
+        }
+        for (std::uint64_t item = 0; item < e.count; ++item)
+            for (const PlyProperty& p : e.props) {
+                std::uint64_t n = 1;
+                if (p.count_size != 0) {
+                    if (end - pos < std::uint64_t(p.count_size)) ply_truncated(path, e, item);
+                    n = read_uint(data.data() + pos, p.count_size, big);
+                    pos += std::uint64_t(p.count_size);
+                }
+                if (n > (end - pos) / std::uint64_t(p.size)) ply_truncated(path, e, item);
+                pos += n * std::uint64_t(p.size);
+            }
+    }
+}
+
+void walk_ply_ascii(const std::string& data, const PlyHeader& h, const std::string& path) {
+    std::size_t pos = h.body;
+    auto next_token = [&](std::string_view& tok) {
+        while (pos < data.size() && std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+        if (pos == data.size()) return false;
+        const std::size_t start = pos;
+        while (pos < data.size() && !std::isspace(static_cast<unsigned char>(data[pos]))) ++pos;
+        tok = std::string_view(data).substr(start, pos - start);
+        return true;
+    };
+    std::string_view tok;
+    for (const PlyElement& e : h.elements) {
+        if (e.props.empty()) continue;  // items without properties take no tokens
+        for (std::uint64_t item = 0; item < e.count; ++item)
+            for (const PlyProperty& p : e.props) {
+                if (!next_token(tok)) ply_truncated(path, e, item);
+                if (p.count_size == 0) continue;
+                std::uint64_t n = 0;
+                const auto [ptr, ec] = std::from_chars(tok.data(), tok.data() + tok.size(), n);
+                if (ec != std::errc{} || ptr != tok.data() + tok.size())
+                    throw InputError(path + ": PLY element '" + e.name + "' item " + std::to_string(item) +
+                                     ": bad list length '" + std::string(tok) + "'");
+                for (std::uint64_t k = 0; k < n; ++k)
+                    if (!next_token(tok)) ply_truncated(path, e, item);
+            }
+    }
+}
+
+void check_ply_structure(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open");
+    const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const PlyHeader h = parse_ply_header(data, path);
+    if (h.format == "ascii")
+        walk_ply_ascii(data, h, path);
+    else
+        walk_ply_binary(data, h, path);
+}
+
+std::string mesh_label(const aiScene& sc, unsigned mi) {
+    return sc.mNumMeshes > 1 ? " of mesh " + std::to_string(mi) : std::string();
+}
+
+// Checked on Assimp's raw import, before any post-processing step runs:
+// Assimp's PLY reader passes out-of-range indices (and garbage from a
+// truncated binary file) and empty faces (truncated ASCII file) straight
+// through, and its Triangulate and JoinIdenticalVertices steps would read
+// out of bounds or abort on them. Vertex indices here are those of the raw
+// import: for a PLY file, the file's vertex index; for OBJ, one vertex per
+// face corner.
+void check_raw(const aiScene& sc, const std::string& path) {
     for (unsigned mi = 0; mi < sc.mNumMeshes; ++mi) {
         const aiMesh& am = *sc.mMeshes[mi];
         for (unsigned vi = 0; vi < am.mNumVertices; ++vi) {
             const aiVector3D& p = am.mVertices[vi];
             if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) continue;
             std::ostringstream os;
-            os << path << ": non-finite coordinate at vertex " << vi;
-            if (sc.mNumMeshes > 1) os << " of mesh " << mi;
-            os << " (" << p.x << ' ' << p.y << ' ' << p.z << ')';
+            os << path << ": non-finite coordinate at vertex " << vi << mesh_label(sc, mi) << " (" << p.x << ' '
+               << p.y << ' ' << p.z << ')';
             throw InputError(os.str());
+        }
+        for (unsigned fi = 0; fi < am.mNumFaces; ++fi) {
+            const aiFace& f = am.mFaces[fi];
+            if (f.mNumIndices == 0)
+                throw InputError(path + ": face " + std::to_string(fi) + mesh_label(sc, mi) +
+                                 " has no vertex indices (truncated or malformed file)");
+            for (unsigned k = 0; k < f.mNumIndices; ++k) {
+                if (f.mIndices[k] < am.mNumVertices) continue;
+                std::ostringstream os;
+                os << path << ": vertex index " << f.mIndices[k] << " out of range (" << am.mNumVertices
+                   << " vertices) in face " << fi << mesh_label(sc, mi) << " (truncated or malformed file?)";
+                throw InputError(os.str());
+            }
         }
     }
 }
@@ -126,12 +313,13 @@ void append_mesh(Mesh& out, const aiMesh& am, const std::string& path) {
 
 Mesh load_mesh_file(const std::string& path) {
     check_readable(path);
+    if (lower_extension(path) == ".ply") check_ply_structure(path);
     Assimp::Importer imp;
-    // Step 1: raw import, no post-processing, so non-finite input can be
-    // reported before anything else touches it.
+    // Step 1: raw import, no post-processing, so bad input is reported before
+    // anything else touches it.
     const aiScene* sc = imp.ReadFile(path, 0);
     if (!sc) throw InputError(path + ": cannot load mesh: " + imp.GetErrorString());
-    check_finite(*sc, path);
+    check_raw(*sc, path);
     // Step 2: Triangulate splits an n-gon into n-2 triangles in place of the
     // polygon and keeps zero-area ones; JoinIdenticalVertices only renumbers
     // vertices. FindDegenerates is deliberately not run, so no triangle is

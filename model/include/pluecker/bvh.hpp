@@ -20,6 +20,28 @@
 //   also exactly the union of its children's boxes.
 //
 // Centroids are the centres of the triangles' bounding boxes.
+//
+// Median build (the report's): a node of more than max_leaf_size triangles
+// is split at the midpoint of its box on axis depth % 3 (x, y, z round
+// robin), triangles by centroid; if that leaves a side empty the next axes
+// are tried, then the object median (the smaller half of the centroids on
+// axis depth % 3 to child 0). Leaves hold <= max_leaf_size triangles. A
+// spatial split of boxes that all contain one shared vertex peels a fan a
+// triangle per level, so the tree can be deep (depth 270 for
+// sphere:1000000): size traversal stacks by Bvh::depth(). To keep such
+// fans from costing O(n^2), nodes at depth >= 256 + 2*bit_width(n) always
+// take the object median.
+//
+// SAH build (binned, after I. Wald, "On fast construction of SAH-based
+// bounding volume hierarchies", IEEE Symposium on Interactive Ray Tracing
+// 2007): `bins` bins per axis over the node's centroid bounds, on all three
+// axes; every boundary between non-empty bins is costed as
+//   cost_traverse + cost_intersect * (AL*NL + AR*NR) / A
+// (A, AL, AR: half surface areas of the tight boxes); equal costs go to the
+// more balanced split, then to the lower axis and bin. A node becomes a leaf
+// when n * cost_intersect is no more than the best split's cost and n <=
+// sah_max_leaf_size. A node whose centroids all coincide is a leaf up to
+// that size, else it is halved (object median).
 #pragma once
 
 #include "pluecker/geometry.hpp"
@@ -52,7 +74,9 @@ struct BuildOptions {
     // Every node box is grown by this in all directions (the report's value
     // for its scenes scaled into [-1,1]).
     float epsilon = 1e-6f;
-    // SAH costs, in the report's terms costTraverse and costTriIntersect:
+    // SAH costs, in the report's terms costTraverse and costTriIntersect.
+    // Default 1:1, a node visit weighted like one triangle test (our choice;
+    // leaves then average about two triangles):
     // a node of n triangles and half-area A split into (nL, AL), (nR, AR)
     // costs cost_traverse + cost_intersect * (AL*nL + AR*nR) / A; as a leaf
     // it costs n * cost_intersect.
@@ -63,7 +87,7 @@ struct BuildOptions {
     // SAH build: a node larger than this is always split, even when the
     // cost model prefers a leaf.
     int sah_max_leaf_size = 16;
-    // SAH build: bins per axis over the centroid bounds (2..256).
+    // SAH build: bins per axis over the centroid bounds (2..64).
     int bins = 16;
 
     // Throws InputError naming the field when a value is out of range.

@@ -39,12 +39,17 @@ struct Mesh {
 
 // Loads an OBJ or PLY file (chosen by extension, case-insensitive) with
 // Assimp, triangulating polygons (an n-gon gives n-2 consecutive triangles)
-// and welding identical vertices. All meshes of the file are merged in
-// Assimp's mesh order. Degenerate and duplicate triangles are kept (Assimp's
-// FindDegenerates step is not run); point and line primitives are skipped.
-// Throws InputError naming the file for: a missing file, an unknown
-// extension, an Assimp failure (with Assimp's reason), an empty mesh, a
-// non-finite coordinate (with the vertex index) and an index out of range.
+// and welding identical vertices within each Assimp mesh (unreferenced
+// vertices are dropped). All meshes of the file (OBJ: one per object/group
+// and material) are merged in Assimp's mesh order; within a mesh, triangles
+// keep the file's face order. Degenerate and duplicate triangles are kept
+// (Assimp's FindDegenerates step is not run); point and line primitives are
+// skipped. A PLY file's header and body layout are checked before Assimp
+// reads it (Assimp 5.2 hangs on a missing end_header and reads garbage from
+// a truncated body). Throws InputError naming the file for: a missing file,
+// an unknown extension, a malformed or truncated PLY, an Assimp failure
+// (with Assimp's reason), an empty mesh, a non-finite coordinate (with the
+// vertex index) and an index out of range.
 Mesh load_mesh_file(const std::string& path);
 
 // The Utah teapot: Newell's 32 bicubic Bezier patches, each tessellated into

@@ -13,6 +13,7 @@
 
 #include "pluecker/geometry.hpp"
 
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -21,6 +22,10 @@ namespace pluecker {
 
 // Throws InputError("<source>:<line>: <what>") on the first bad line.
 std::vector<Query> read_queries(std::istream& in, const std::string& source);
+// As above; also stores the 1-based line number of each query in *lines
+// (when given), so later errors (e.g. a fixed-point range error) can name it.
+std::vector<Query> read_queries(std::istream& in, const std::string& source,
+                                std::vector<std::size_t>* lines);
 std::vector<Query> read_queries_file(const std::string& path);
 
 // Checks one query the way read_queries does; throws InputError naming

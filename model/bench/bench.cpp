@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: MIT
+// pluecker_bench: BVH build time and single-thread traversal throughput of
+// the report's five configurations (smits-mul-cls, smits-dist, smits-dsa,
+// pluecker-cls, pluecker-dsa) on a large synthetic sphere, for camera rays
+// (a view of the sphere) and random rays (origins and directions random in
+// the cube), closest hit.
+#include "pluecker/bvh.hpp"
+#include "pluecker/mesh.hpp"
+#include "pluecker/render.hpp"
+#include "pluecker/traverse.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace pluecker;
+
+struct Options {
+    std::string scene = "sphere:1000000";
+    int size = 1024;            // camera rays: size x size
+    std::size_t random = 1000000;  // random rays
+    int repeat = 1;             // best of N timings
+    std::vector<BuildMethod> builds{BuildMethod::Median, BuildMethod::Sah};
+};
+
+void usage() {
+    std::printf(
+        "usage: pluecker_bench [--scene S] [--size N] [--random N] [--repeat N]\n"
+        "  --scene S    scene spec (teapot | spheres | sphere:N | FILE)  [sphere:1000000]\n"
+        "  --size N     camera rays: N x N view of the scene, 8x8 tiles   [1024]\n"
+        "  --random N   random rays, origins and directions in the cube   [1000000]\n"
+        "  --repeat N   time each run N times, report the best            [1]\n"
+        "  --build B    median | sah | both                               [both]\n");
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw InputError("option " + a + " needs a value");
+            return argv[++i];
+        };
+        auto number = [&](long lo, long hi) {
+            const std::string v = value();
+            char* end = nullptr;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end || n < lo || n > hi)
+                throw InputError("option " + a + ": '" + v + "' is not an integer in " + std::to_string(lo) + ".." +
+                                 std::to_string(hi));
+            return n;
+        };
+        if (a == "--scene") o.scene = value();
+        else if (a == "--size") o.size = static_cast<int>(number(1, 16384));
+        else if (a == "--random") o.random = static_cast<std::size_t>(number(1, 1L << 30));
+        else if (a == "--repeat") o.repeat = static_cast<int>(number(1, 100));
+        else if (a == "--build") {
+            const std::string v = value();
+            o.builds = v == "both" ? std::vector<BuildMethod>{BuildMethod::Median, BuildMethod::Sah}
+                                   : std::vector<BuildMethod>{parse_build_method(v)};
+        }
+        else if (a == "--help" || a == "-h") {
+            usage();
+            std::exit(0);
+        } else {
+            throw InputError("unknown option " + a);
+        }
+    }
+    return o;
+}
+
+std::vector<Ray> camera_rays(const Mesh& m, int side) {
+    const Camera c = default_camera(m);
+    const Vec3 w = glm::normalize(c.eye - c.look);
+    const Vec3 u = glm::normalize(glm::cross(c.up, w));
+    const Vec3 v = glm::cross(w, u);
+    const float th = std::tan(glm::radians(c.fov_deg) * 0.5f);
+    std::vector<Ray> rays;
+    rays.reserve(static_cast<std::size_t>(side) * side);
+    // 8x8 pixel tiles, as a tiled renderer issues them: neighbouring rays
+    // share the upper BVH levels in the cache.
+    constexpr int kTile = 8;
+    for (int ty = 0; ty < side; ty += kTile)
+        for (int tx = 0; tx < side; tx += kTile)
+            for (int y = ty; y < std::min(ty + kTile, side); ++y)
+                for (int x = tx; x < std::min(tx + kTile, side); ++x) {
+                    const float sx = (2.0f * (x + 0.5f) / side - 1.0f) * th;
+                    const float sy = (1.0f - 2.0f * (y + 0.5f) / side) * th;
+                    rays.push_back(Ray{c.eye, glm::normalize(sx * u + sy * v - w), kInf});
+                }
+    return rays;
+}
+
+std::vector<Ray> random_rays(std::size_t n, std::uint64_t seed) {
+    std::uint64_t s = seed;
+    auto next = [&s] {
+        std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    };
+    auto uni = [&next] { return -1.0f + 2.0f * static_cast<float>(next() >> 40) * 0x1p-24f; };
+    std::vector<Ray> rays(n);
+    for (Ray& r : rays) {
+        r.o = Vec3(uni(), uni(), uni());
+        Vec3 d;
+        do d = Vec3(uni(), uni(), uni());
+        while (glm::length(d) < 0.05f || glm::length(d) > 1.0f);
+        r.d = glm::normalize(d);
+        r.tmax = kInf;
+    }
+    return rays;
+}
+
+// CPU time of this thread: the figures stay per-thread figures on a machine
+// shared with other jobs.
+double thread_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+struct Result {
+    double mrays = 0;
+    TraversalStats st;
+    std::uint64_t hits = 0;
+    std::uint64_t checksum = 0;
+};
+
+template <class Policy, ChildOrder Order>
+Result run(const Accel& a, const Policy& p, const std::vector<Ray>& rays, int repeat) {
+    Result best;
+    for (int k = 0; k < repeat; ++k) {
+        Result r;
+        const double t0 = thread_seconds();
+        for (const Ray& ray : rays) {
+            const Hit h = traverse<Policy, Order, false>(a, p, ray, r.st);
+            r.hits += h.found();
+            r.checksum = r.checksum * 31 + h.tri;
+        }
+        const double s = thread_seconds() - t0;
+        r.mrays = static_cast<double>(rays.size()) / s * 1e-6;
+        if (r.mrays > best.mrays) best = r;
+    }
+    return best;
+}
+
+Result run_config(const Accel& a, int config, const std::vector<Ray>& rays, int repeat) {
+    switch (config) {
+        case 0: return run<SmitsPolicy, ChildOrder::Fixed>(a, SmitsPolicy{}, rays, repeat);
+        case 1: return run<SmitsPolicy, ChildOrder::Dist>(a, SmitsPolicy{}, rays, repeat);
+        case 2: return run<SmitsPolicy, ChildOrder::Dsa>(a, SmitsPolicy{}, rays, repeat);
+        case 3: return run<PlueckerPolicy, ChildOrder::Fixed>(a, PlueckerPolicy{}, rays, repeat);
+        default: return run<PlueckerPolicy, ChildOrder::Dsa>(a, PlueckerPolicy{}, rays, repeat);
+    }
+}
+
+const char* kConfigNames[5] = {"smits-mul-cls", "smits-dist", "smits-dsa", "pluecker-cls", "pluecker-dsa"};
+
+int bench(const Options& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Mesh mesh = make_scene(o.scene);
+    std::printf("scene %s: %zu triangles (made in %.0f ms)\n", mesh.name.c_str(), mesh.triangles.size(),
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    const std::vector<Ray> cam = camera_rays(mesh, o.size);
+    const std::vector<Ray> rnd = random_rays(o.random, 0xbe7c4u);
+    std::printf("rays: %zu camera (%dx%d view), %zu random; one thread, closest hit, best of %d;\n"
+                "Mray/s per second of thread CPU time\n\n",
+                cam.size(),
+                o.size, o.size, rnd.size(), o.repeat);
+    std::printf("%-7s %-14s %10s %9s %9s %9s %10s %9s %9s %9s\n", "build", "config", "cam Mray/s", "nodes/ray",
+                "boxes/ray", "tris/ray", "rnd Mray/s", "nodes/ray", "boxes/ray", "tris/ray");
+    int status = 0;
+    for (const BuildMethod method : o.builds) {
+        BuildOptions bo;
+        bo.method = method;
+        const Bvh bvh = build_bvh(mesh, bo);
+        const Accel accel(mesh, bvh);
+        std::printf("%-7s build %.1f ms: %zu nodes, %zu leaves, depth %d\n", method_name(method), bvh.build_ms,
+                    bvh.nodes.size(), bvh.leaf_count(), bvh.depth());
+        std::uint64_t cam_sum = 0, rnd_sum = 0;
+        for (int c = 0; c < 5; ++c) {
+            const Result rc = run_config(accel, c, cam, o.repeat);
+            const Result rr = run_config(accel, c, rnd, o.repeat);
+            auto per = [](std::uint64_t v, std::size_t n) { return static_cast<double>(v) / static_cast<double>(n); };
+            std::printf("%-7s %-14s %10.2f %9.1f %9.1f %9.1f %10.2f %9.1f %9.1f %9.1f\n", method_name(method),
+                        kConfigNames[c], rc.mrays, per(rc.st.node_visits, cam.size()), per(rc.st.box_tests, cam.size()),
+                        per(rc.st.tri_tests, cam.size()), rr.mrays, per(rr.st.node_visits, rnd.size()),
+                        per(rr.st.box_tests, rnd.size()), per(rr.st.tri_tests, rnd.size()));
+            std::fflush(stdout);
+            // Every configuration must find the same hits.
+            if (c == 0) {
+                cam_sum = rc.checksum;
+                rnd_sum = rr.checksum;
+            } else if (rc.checksum != cam_sum || rr.checksum != rnd_sum) {
+                std::printf("ERROR: %s finds other hits than %s\n", kConfigNames[c], kConfigNames[0]);
+                status = 1;
+            }
+        }
+    }
+    return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return bench(parse(argc, argv));
+    } catch (const pluecker::InputError& e) {
+        std::fprintf(stderr, "pluecker_bench: error: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "pluecker_bench: internal error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// Options shared by `pluecker render` and `pluecker trace`: the scene, the
+// BVH build, the box test and child order, the fixed-point format, the
+// image size and the camera.
+#pragma once
+
+#include "args.hpp"
+
+#include "pluecker/bvh.hpp"
+#include "pluecker/mesh.hpp"
+#include "pluecker/render.hpp"
+#include "pluecker/traverse.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+
+namespace pluecker::cli {
+
+inline const std::set<std::string> kSceneOptions = {
+    "scene", "test",  "order", "build", "size", "width", "height",    "coord-bits", "dir-bits", "mode",
+    "epsilon", "eye", "look",  "up",    "fov",  "max-depth", "lights", "out",      "threads",  "pool"};
+
+inline const char* kSceneHelp =
+    "  --scene S        teapot | spheres | sphere:N | FILE (.obj/.ply)   [teapot]\n"
+    "  --test T         exact | smits | pluecker | fixed                 [pluecker]\n"
+    "  --order O        fixed | dsa | dist (dist: smits only)            [dsa]\n"
+    "  --build B        median | sah                                     [sah]\n"
+    "  --size N         image N x N                                      [512]\n"
+    "  --width W --height H   override the size per axis\n"
+    "  --coord-bits N --dir-bits M --mode conservative|nearest   fixed test only [16 16 conservative]\n"
+    "  --epsilon E      BVH box growth                                   [1e-6]\n"
+    "  --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   camera (default: per scene)\n"
+    "  --lights N       1 or 2 point lights                              [2]\n"
+    "  --max-depth D    reflection/refraction levels                     [4]\n";
+
+inline Vec3 parse_vec3(const Args& a, const std::string& name, const Vec3& fallback) {
+    if (!a.has(name)) return fallback;
+    const std::string s = a.get(name, "");
+    Vec3 v;
+    std::size_t pos = 0;
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t comma = s.find(',', pos);
+        if ((k < 2) != (comma != std::string::npos))
+            throw InputError("option --" + name + ": '" + s + "' is not three numbers X,Y,Z");
+        const std::string part = s.substr(pos, k < 2 ? comma - pos : std::string::npos);
+        char* end = nullptr;
+        const double x = std::strtod(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !std::isfinite(x))
+            throw InputError("option --" + name + ": '" + part + "' is not a finite number");
+        v[k] = static_cast<float>(x);
+        pos = comma + 1;
+    }
+    return v;
+}
+
+// Everything a render or a trace needs, built from the flags.
+inline std::unique_ptr<RenderSetup> make_setup(const Args& a) {
+    RenderOptions o;
+    o.test = parse_box_test(a.get("test", "pluecker"));
+    o.order = parse_child_order(a.get("order", "dsa"));
+    check_combination(o.test, o.order);
+    BuildOptions bo;
+    bo.method = parse_build_method(a.get("build", "sah"));
+    const long size = a.get_int("size", 512, 1, 16384);
+    o.width = static_cast<int>(a.get_int("width", size, 1, 16384));
+    o.height = static_cast<int>(a.get_int("height", size, 1, 16384));
+    const bool fixed = o.test == BoxTestKind::Fixed;
+    for (const char* f : {"coord-bits", "dir-bits", "mode", "pool"})
+        if (a.has(f) && !fixed) throw InputError(std::string("option --") + f + " needs --test fixed");
+    o.fixed.coord_bits = static_cast<int>(a.get_int("coord-bits", FixedFormat::kDefaultCoordBits,
+                                                    FixedFormat::kMinBits, FixedFormat::kMaxBits));
+    o.fixed.dir_bits = static_cast<int>(
+        a.get_int("dir-bits", FixedFormat::kDefaultDirBits, FixedFormat::kMinBits, FixedFormat::kMaxBits));
+    try {
+        o.fixed.mode = parse_fixed_mode(a.get("mode", "conservative"));
+    } catch (const InputError& e) {
+        throw InputError(std::string("option --mode: ") + e.what());
+    }
+    o.threads = static_cast<int>(a.get_int("threads", 1, 1, 1024));
+    o.pool = static_cast<std::size_t>(a.get_int("pool", 256, 1, 1 << 20));
+    o.max_depth = static_cast<int>(a.get_int("max-depth", 4, 0, 32));
+    o.light_count = static_cast<int>(a.get_int("lights", 2, 1, 2));
+    bo.epsilon = static_cast<float>(a.get_double("epsilon", bo.epsilon));
+    if (!(bo.epsilon >= 0.0f)) throw InputError("option --epsilon: must be >= 0");
+
+    // Camera flags are checked before the (possibly long) build; the
+    // defaults they override come from the scene.
+    const bool camera = a.has("eye") || a.has("look") || a.has("up") || a.has("fov");
+    const Vec3 nan3(std::nanf(""));
+    const Vec3 eye = parse_vec3(a, "eye", nan3), look = parse_vec3(a, "look", nan3), up = parse_vec3(a, "up", nan3);
+    const float fov = static_cast<float>(a.get_double("fov", 40.0));
+    if (!(fov > 0.0f && fov < 180.0f)) throw InputError("option --fov: must be in (0, 180)");
+
+    auto s = make_render_setup(a.get("scene", "teapot"), bo, o);
+    if (camera) {
+        Camera c = default_camera(s->mesh);
+        if (a.has("eye")) c.eye = eye;
+        if (a.has("look")) c.look = look;
+        if (a.has("up")) c.up = up;
+        if (a.has("fov")) c.fov_deg = fov;
+        const Vec3 w = c.eye - c.look;
+        if (!(w.x != 0.0f || w.y != 0.0f || w.z != 0.0f)) throw InputError("options --eye and --look: must differ");
+        const Vec3 side = glm::cross(c.up, w);
+        if (!(side.x != 0.0f || side.y != 0.0f || side.z != 0.0f))
+            throw InputError("option --up: parallel to the view direction");
+        s->opts.camera = c;
+    }
+    return s;
+}
+
+}  // namespace pluecker::cli

@@ -1,0 +1,539 @@
+// SPDX-License-Identifier: MIT
+// BVH traversal: closest hit and any hit over the box tests of boxtest.hpp
+// and fixed.hpp, with the child orders of Mahovsky's 2005 report, and a
+// batched, resumable traversal for hardware in the loop.
+//
+// Traversal (all paths)
+//   The root box is tested first. At an interior node both child boxes are
+//   tested (two box tests); when both are hit the first child (by the child
+//   order) is visited next and the other is pushed on a stack; a leaf tests
+//   its triangles with the watertight test (triangle.hpp). Closest hit
+//   shrinks the ray's tmax, as the box tests see it, to the current best hit;
+//   any hit stops at the first triangle hit in [0, tmax].
+//   Counted: node visits (every node entered, leaves included), box tests
+//   (every box test call, the root's included), triangle tests.
+//
+// Child orders
+//   fixed  child 0 first.
+//   dsa    the report's direction/split-axis order: child 0 holds the lower
+//          side of the split axis, so a ray negative along the split axis
+//          visits child 1 first, a positive one child 0. Kept as an explicit
+//          table over the 8 ray classes and 3 axes (kDsaFirstChild).
+//   dist   nearer entry distance first (needs the distance the slab test
+//          yields: smits only); a popped node farther than the current best
+//          hit is skipped.
+//
+// The report's configurations: smits-mul-cls (smits + fixed), smits-dist,
+// smits-dsa, pluecker-cls (pluecker + fixed), pluecker-dsa; besides them the
+// exact test and the fixed-point test (fixed or dsa order).
+//
+// Fixed-point path
+//   Every ray is first clipped to the cube of fixed_clip_ray (fixed.hpp); a
+//   ray that misses the cube hits nothing. The box tests see the clipped ray
+//   (its tmax, when shrunk to a hit at t, becomes t - t0 rounded up); the
+//   triangle tests and hit distances use the original ray.
+#pragma once
+
+#include "pluecker/boxtest.hpp"
+#include "pluecker/bvh.hpp"
+#include "pluecker/fixed.hpp"
+#include "pluecker/geometry.hpp"
+#include "pluecker/mesh.hpp"
+#include "pluecker/triangle.hpp"
+
+#include <glm/common.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pluecker {
+
+// ---------------------------------------------------------------------------
+// Names and options
+
+enum class BoxTestKind { Exact, Smits, Pluecker, Fixed };
+enum class ChildOrder { Fixed, Dsa, Dist };
+
+BoxTestKind parse_box_test(const std::string& s);  // exact|smits|pluecker|fixed, else InputError
+const char* test_name(BoxTestKind t);
+ChildOrder parse_child_order(const std::string& s);  // fixed|dsa|dist, else InputError
+const char* order_name(ChildOrder o);
+// Throws InputError naming --order and --test when the pair is not allowed
+// (dist needs the entry distance of smits).
+void check_combination(BoxTestKind t, ChildOrder o);
+// The report's name for the configuration (smits-mul-cls, smits-dist,
+// smits-dsa, pluecker-cls, pluecker-dsa), else "<test>-<order>".
+std::string config_name(BoxTestKind t, ChildOrder o);
+
+// kDsaFirstChild[class][axis]: the child a ray of that class visits first at
+// a node split along that axis.
+inline constexpr std::array<std::array<std::uint8_t, 3>, 8> kDsaFirstChild = {{
+    {0, 0, 0},  // PPP
+    {1, 0, 0},  // MPP
+    {0, 1, 0},  // PMP
+    {1, 1, 0},  // MMP
+    {0, 0, 1},  // PPM
+    {1, 0, 1},  // MPM
+    {0, 1, 1},  // PMM
+    {1, 1, 1},  // MMM
+}};
+inline int dsa_first_child(RayClass c, int axis) { return kDsaFirstChild[c][axis]; }
+
+struct TraversalStats {
+    std::uint64_t node_visits = 0;
+    std::uint64_t box_tests = 0;
+    std::uint64_t tri_tests = 0;
+    TraversalStats& operator+=(const TraversalStats& o) {
+        node_visits += o.node_visits;
+        box_tests += o.box_tests;
+        tri_tests += o.tri_tests;
+        return *this;
+    }
+    bool operator==(const TraversalStats&) const = default;
+};
+
+// Stack entries a traversal keeps in its frame; deeper BVHs use a
+// per-thread heap stack.
+inline constexpr int kMaxStack = 256;
+
+// ---------------------------------------------------------------------------
+// What a traversal reads: the BVH nodes, the triangles copied in leaf order
+// (tris[i] is triangle bvh.tri_order[i]) and, for the fixed-point path, the
+// node boxes quantised once.
+struct Accel {
+    // Copies the nodes (same indices) so that every sibling pair
+    // (first, first + 1) shares one 64-byte cache line.
+    Accel(const Mesh& mesh, const Bvh& bvh);
+
+    std::span<const BvhNode> nodes;
+    int depth = 1;  // levels of the BVH
+    std::vector<LeafTri> tris;
+    struct FreeDeleter {
+        void operator()(BvhNode* p) const { std::free(p); }
+    };
+    std::unique_ptr<BvhNode[], FreeDeleter> node_store;  // 64-byte aligned; nodes[i] = node_store[i + 1]
+
+    // Quantises every node box (fixed_quantize_box) for format f.
+    void quantize(const FixedFormat& f);
+    bool quantized = false;
+    FixedFormat format;
+    std::vector<FixedBox> qboxes;
+};
+
+// ---------------------------------------------------------------------------
+// Box tests as traversal policies. Each has a per-ray State, set up once and
+// updated when tmax shrinks, and answers hit(state, node index, box).
+
+// Inline forms of smits_hit and pluecker_hit for the traversal loop,
+// specialised per ray class C (the report's eight-class form: near and far
+// planes and signs are resolved at compile time; the traversal dispatches
+// on the class once per ray). They perform the same float operations as
+// boxtest.cpp on the same set-up, so they give the same answers (and, for
+// smits, the same entry distance). test_traverse.cpp checks the agreement
+// on random and extreme queries.
+// Component i of v without glm's operator[] (its bounds assert is live in
+// -O2 builds without NDEBUG); with a constant i it folds to one load.
+[[gnu::always_inline]] inline float at(const Vec3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
+
+struct FastSmitsRay {
+    Vec3 o, inv;
+    float tmax;
+};
+struct FastPlueckerRay {
+    Vec3 o, d, e;  // d: |d_i|
+    bool has_end;
+};
+
+inline FastSmitsRay fast_smits_setup(const Ray& r) {
+    const SmitsRay s = smits_setup(r);
+    return FastSmitsRay{s.o, s.inv, s.tmax};
+}
+
+template <RayClass C>
+[[gnu::always_inline]] inline bool fast_smits_hit(const FastSmitsRay& r, const Box& b, float* tnear) {
+    constexpr bool n[3] = {(C & 1) != 0, (C & 2) != 0, (C & 4) != 0};
+    float t0 = 0.0f, t1 = r.tmax;
+    for (int a = 0; a < 3; ++a) {
+        const float en = (at(n[a] ? b.hi : b.lo, a) - at(r.o, a)) * at(r.inv, a);
+        const float ex = (at(n[a] ? b.lo : b.hi, a) - at(r.o, a)) * at(r.inv, a);
+        t0 = en > t0 ? en : t0;  // NaN (ray inside a plane): keep
+        t1 = ex < t1 ? ex : t1;
+    }
+    if (!(t0 <= t1)) return false;
+    if (tnear) *tnear = t0;
+    return true;
+}
+
+inline FastPlueckerRay fast_pluecker_setup(const Ray& r) {
+    const PlueckerRay p = pluecker_setup(r);
+    return FastPlueckerRay{p.o, glm::abs(p.d), p.e, p.has_end};
+}
+
+template <RayClass C>
+[[gnu::always_inline]] inline bool fast_pluecker_hit(const FastPlueckerRay& r, const Box& b) {
+    constexpr bool n[3] = {(C & 1) != 0, (C & 2) != 0, (C & 4) != 0};
+    float A[3], B[3];
+    for (int i = 0; i < 3; ++i) {
+        A[i] = n[i] ? at(r.o, i) - at(b.hi, i) : at(b.lo, i) - at(r.o, i);
+        B[i] = n[i] ? at(r.o, i) - at(b.lo, i) : at(b.hi, i) - at(r.o, i);
+    }
+    const float D[3] = {r.d.x, r.d.y, r.d.z};
+    // All tests evaluated, one branch at the end: the same conjunction as
+    // boxtest.cpp's early returns.
+    bool miss = (B[0] < 0.0f) | (B[1] < 0.0f) | (B[2] < 0.0f);
+    miss |= B[1] * D[0] - A[0] * D[1] < 0.0f;
+    miss |= B[0] * D[1] - A[1] * D[0] < 0.0f;
+    miss |= B[2] * D[0] - A[0] * D[2] < 0.0f;
+    miss |= B[0] * D[2] - A[2] * D[0] < 0.0f;
+    miss |= B[2] * D[1] - A[1] * D[2] < 0.0f;
+    miss |= B[1] * D[2] - A[2] * D[1] < 0.0f;
+    if (r.has_end)
+        for (int i = 0; i < 3; ++i) miss |= (n[i] ? at(b.hi, i) - at(r.e, i) : at(r.e, i) - at(b.lo, i)) < 0.0f;
+    return !miss;
+}
+
+// A policy's hit<C>(state, node, box, tnear) may use the class C of the ray
+// (the traversal passes the class of the ray it set up).
+struct SmitsPolicy {
+    static constexpr bool kDistance = true;
+    struct State {
+        FastSmitsRay s;
+        Ray ray;
+    };
+    State setup(const Ray& r) const { return {fast_smits_setup(r), r}; }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const {
+        st.s.tmax = t;
+        st.ray.tmax = t;
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] bool hit(const State& st, std::uint32_t, const Box& b, float* tnear) const {
+        return fast_smits_hit<C>(st.s, b, tnear);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+struct PlueckerPolicy {
+    static constexpr bool kDistance = false;
+    struct State {
+        FastPlueckerRay p;
+        Ray ray;
+    };
+    State setup(const Ray& r) const { return {fast_pluecker_setup(r), r}; }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const {
+        st.ray.tmax = t;
+        st.p = fast_pluecker_setup(st.ray);
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] bool hit(const State& st, std::uint32_t, const Box& b, float*) const {
+        return fast_pluecker_hit<C>(st.p, b);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+struct ExactPolicy {
+    static constexpr bool kDistance = false;
+    struct State {
+        Ray ray;
+    };
+    State setup(const Ray& r) const { return {r}; }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const { st.ray.tmax = t; }
+    template <RayClass>
+    bool hit(const State& st, std::uint32_t, const Box& b, float*) const {
+        return exact_hit(st.ray, b);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+// The clipped-ray tmax for a hit at distance t of the original ray:
+// t - t0 rounded up, never above the current value.
+float clipped_tmax(float t, float t0, float current);
+
+struct FixedPolicy {
+    static constexpr bool kDistance = false;
+    explicit FixedPolicy(const Accel& a) : accel(&a) {}
+    const Accel* accel;
+    struct State {
+        Ray clipped;
+        float t0 = 0.0f;
+        FixedRay fr;
+        bool live = false;
+    };
+    State setup(const Ray& r) const;
+    bool live(const State& st) const { return st.live; }
+    void shrink(State& st, float t) const;
+    template <RayClass>
+    bool hit(const State& st, std::uint32_t node, const Box&, float*) const {
+        return fixed_hit(st.fr, accel->qboxes[node], accel->format);
+    }
+    Ray query_ray(const State& st) const { return st.clipped; }
+};
+
+// Wraps a policy and appends every query it answers to *out.
+template <class Inner>
+struct RecordingPolicy {
+    static constexpr bool kDistance = Inner::kDistance;
+    const Inner* inner;
+    std::vector<Query>* out;
+    using State = typename Inner::State;
+    State setup(const Ray& r) const { return inner->setup(r); }
+    bool live(const State& st) const { return inner->live(st); }
+    void shrink(State& st, float t) const { inner->shrink(st, t); }
+    template <RayClass C>
+    bool hit(const State& st, std::uint32_t node, const Box& b, float* tnear) const {
+        out->push_back(Query{inner->query_ray(st), b});
+        return inner->template hit<C>(st, node, b, tnear);
+    }
+    Ray query_ray(const State& st) const { return inner->query_ray(st); }
+};
+
+// ---------------------------------------------------------------------------
+// The traversal loop for rays of class C.
+
+[[gnu::always_inline]] inline void prefetch_below(const Accel& a, const BvhNode& n) {
+    const void* p = n.is_leaf() ? static_cast<const void*>(a.tris.data() + n.first)
+                                : static_cast<const void*>(a.nodes.data() + n.first);
+    __builtin_prefetch(p);
+}
+
+template <class Policy, ChildOrder Order, bool AnyHit, RayClass C>
+Hit traverse_class(const Accel& a, const Policy& test, const Ray& ray, TraversalStats& st) {
+    static_assert(Order != ChildOrder::Dist || Policy::kDistance, "dist order needs the entry distance");
+    struct Entry {
+        std::uint32_t node;
+        float tnear;
+    };
+    auto s = test.setup(ray);
+    if (!test.live(s)) return Hit{};
+    const BvhNode* nodes = a.nodes.data();
+    const LeafTri* tris = a.tris.data();
+    const TriRay tr = tri_setup(ray);
+    Hit best;
+    best.t = ray.tmax;
+    Entry local[kMaxStack];
+    Entry* stack = local;
+    if (a.depth > kMaxStack) [[unlikely]] {
+        thread_local std::vector<Entry> deep;
+        if (deep.size() < static_cast<std::size_t>(a.depth)) deep.resize(static_cast<std::size_t>(a.depth));
+        stack = deep.data();
+    }
+    int sp = 0;
+    float tn0 = 0.0f, tn1 = 0.0f;
+    // Counters in locals: the compiler keeps them in registers.
+    std::uint64_t visits = 0, boxes = 1, tri_tests = 0;
+    std::uint32_t cur = 0;
+    if (!test.template hit<C>(s, 0, nodes[0].box, &tn0)) goto done;
+    for (;;) {
+        ++visits;
+        {
+            const BvhNode& n = nodes[cur];
+            if (n.is_leaf()) {
+                const float before = best.t;
+                const std::uint32_t end = static_cast<std::uint32_t>(n.first + n.count);
+                for (std::uint32_t i = static_cast<std::uint32_t>(n.first); i < end; ++i) {
+                    ++tri_tests;
+                    const LeafTri& tri = tris[i];
+                    float t, b1, b2;
+                    if (tri_intersect(tr, tri.v0, tri.v1, tri.v2, best.t, t, b1, b2) && closer(t, tri.id, best)) {
+                        best = Hit{t, b1, b2, tri.id};
+                        if constexpr (AnyHit) goto done;
+                    }
+                }
+                if (best.t < before) test.shrink(s, best.t);
+            } else {
+                const std::uint32_t c0 = static_cast<std::uint32_t>(n.first);
+                boxes += 2;
+                // Both children's data (their child pair or their triangles)
+                // is fetched while the boxes are tested: one level of memory
+                // latency hidden on rays that leave the cache.
+                prefetch_below(a, nodes[c0]);
+                prefetch_below(a, nodes[c0 + 1]);
+                const bool h0 = test.template hit<C>(s, c0, nodes[c0].box, &tn0);
+                const bool h1 = test.template hit<C>(s, c0 + 1, nodes[c0 + 1].box, &tn1);
+                if (h0 && h1) {
+                    bool swap;
+                    if constexpr (Order == ChildOrder::Fixed)
+                        swap = false;
+                    else if constexpr (Order == ChildOrder::Dsa)
+                        swap = dsa_first_child(C, n.axis()) != 0;
+                    else
+                        swap = tn1 < tn0;
+                    stack[sp++] = swap ? Entry{c0, tn0} : Entry{c0 + 1, tn1};
+                    cur = swap ? c0 + 1 : c0;
+                    continue;
+                }
+                if (h0 || h1) {
+                    cur = h0 ? c0 : c0 + 1;
+                    continue;
+                }
+            }
+        }
+        for (;;) {
+            if (sp == 0) goto done;
+            const Entry e = stack[--sp];
+            if constexpr (Order == ChildOrder::Dist) {
+                if (e.tnear > best.t) continue;
+            }
+            cur = e.node;
+            break;
+        }
+    }
+done:
+    st.node_visits += visits;
+    st.box_tests += boxes;
+    st.tri_tests += tri_tests;
+    return best.found() ? best : Hit{};
+}
+
+// The traversal. Returns the closest hit (AnyHit = false) or the first hit
+// found (AnyHit = true) with 0 <= t <= ray.tmax; Hit{} when none.
+template <class Policy, ChildOrder Order, bool AnyHit>
+Hit traverse(const Accel& a, const Policy& test, const Ray& ray, TraversalStats& st) {
+    switch (ray_class(ray.d)) {
+        case 0: return traverse_class<Policy, Order, AnyHit, 0>(a, test, ray, st);
+        case 1: return traverse_class<Policy, Order, AnyHit, 1>(a, test, ray, st);
+        case 2: return traverse_class<Policy, Order, AnyHit, 2>(a, test, ray, st);
+        case 3: return traverse_class<Policy, Order, AnyHit, 3>(a, test, ray, st);
+        case 4: return traverse_class<Policy, Order, AnyHit, 4>(a, test, ray, st);
+        case 5: return traverse_class<Policy, Order, AnyHit, 5>(a, test, ray, st);
+        case 6: return traverse_class<Policy, Order, AnyHit, 6>(a, test, ray, st);
+        default: return traverse_class<Policy, Order, AnyHit, 7>(a, test, ray, st);
+    }
+}
+
+// Brute force over all triangles with the same triangle test (mesh order).
+Hit brute_force_closest(const Mesh& m, const Ray& r);
+bool brute_force_any(const Mesh& m, const Ray& r);
+
+// Runtime choice of test and order (one virtual call per ray).
+class Tracer {
+public:
+    virtual ~Tracer() = default;
+    virtual Hit closest(const Ray& r, TraversalStats& st) const = 0;
+    virtual bool occluded(const Ray& r, TraversalStats& st) const = 0;
+};
+// Throws InputError for a bad combination (check_combination). The fixed
+// test needs a quantised Accel (std::logic_error otherwise). With `record`,
+// every box query is appended to it (the tracer is then not thread-safe).
+std::unique_ptr<Tracer> make_tracer(const Accel& a, BoxTestKind t, ChildOrder o, std::vector<Query>* record = nullptr);
+
+// ---------------------------------------------------------------------------
+// Batched, resumable fixed-point traversal (hardware in the loop).
+//
+// A ray is a state machine: it emits the box queries it needs (the root box,
+// then the two child boxes of each interior node it enters), waits for their
+// answers, and continues. A driver keeps many rays in flight, gathers their
+// queries into one batch and hands the batch to a BoxEngine: the software
+// engine calls fixed_hit, the Verilator harness in sim/ sends the same
+// queries through the RTL. Given the same answers, the batched traversal
+// issues the same queries per ray, visits the same nodes and returns the
+// same hit as traverse<FixedPolicy, ...>.
+
+// One ray/box query as the RTL takes it, plus its float form.
+struct BoxQuery {
+    Query query;         // the clipped ray (tmax as the test sees it) and the node's float box
+    FixedRay ray;        // fixed_setup_ray(query.ray, format)
+    FixedBox box;        // fixed_quantize_box(query.box, format)
+    std::uint32_t node;  // BVH node index of the box
+};
+
+class BoxEngine {
+public:
+    virtual ~BoxEngine() = default;
+    // Answers a whole batch: hits[i] = 1 when batch[i] hits, else 0.
+    // hits.size() == batch.size() >= 1.
+    virtual void test(std::span<const BoxQuery> batch, std::span<std::uint8_t> hits) = 0;
+};
+
+// The software engine: fixed_hit on every query.
+class SoftwareBoxEngine final : public BoxEngine {
+public:
+    explicit SoftwareBoxEngine(const FixedFormat& f) : format_(f) {}
+    void test(std::span<const BoxQuery> batch, std::span<std::uint8_t> hits) override;
+
+private:
+    FixedFormat format_;
+};
+
+// One ray's resumable traversal. The Accel must be quantised.
+class RayTraversal {
+public:
+    RayTraversal(const Accel& a, ChildOrder o);  // o: fixed or dsa
+    // Starts a ray; afterwards either done() or pending() is non-empty.
+    void start(const Ray& r, bool any_hit);
+    bool done() const { return done_; }
+    // The queries awaiting answers (1 for the root, 2 for a node's children).
+    std::span<const BoxQuery> pending() const { return {queries_.data(), done_ ? 0u : pending_}; }
+    // Answers to pending(), in order. Tests the triangles of the leaves it
+    // reaches and stops at the next interior node or when done.
+    void resume(std::span<const std::uint8_t> hits);
+    // Closest (or any) hit; valid when done(). Hit{} when none.
+    Hit hit() const { return best_.found() ? best_ : Hit{}; }
+    const TraversalStats& stats() const { return stats_; }
+
+private:
+    void emit(std::uint32_t node, std::size_t slot);
+    void advance(std::uint32_t node);
+    bool pop(std::uint32_t& node);
+
+    const Accel* accel_;
+    ChildOrder order_;
+    FixedPolicy policy_;
+    FixedPolicy::State state_;
+    TriRay tri_{};
+    RayClass cls_ = 0;
+    bool any_hit_ = false;
+    bool done_ = true;
+    Hit best_;
+    TraversalStats stats_;
+    std::uint32_t node_ = 0;  // the node whose children are pending
+    bool root_pending_ = false;
+    std::uint32_t pending_ = 0;
+    std::array<BoxQuery, 2> queries_{};
+    std::vector<std::uint32_t> stack_;
+};
+
+// A ray handed to the driver, and its answer.
+struct BatchRay {
+    Ray ray;
+    bool any_hit = false;
+    std::uint64_t tag = 0;  // the caller's handle, returned with the result
+};
+struct BatchResult {
+    std::uint64_t tag;
+    Hit hit;
+};
+
+struct BatchStats {
+    std::uint64_t batches = 0;
+    std::uint64_t queries = 0;
+    std::size_t max_batch = 0;
+};
+
+// The driver. Keeps up to `pool` rays in flight: asks next() for a ray
+// whenever a slot is free (next returns false when it has none right now;
+// the driver stops when it returns false and no ray is in flight), gathers
+// the pending queries of all rays in slot order into one batch per round,
+// calls engine.test once per round, and calls finish() for every ray that
+// completes (in slot order). finish() may make new rays available to next().
+void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
+                 const std::function<bool(BatchRay&)>& next, const std::function<void(const BatchResult&)>& finish,
+                 TraversalStats& st, BatchStats* bs = nullptr);
+
+// Convenience: traces a list of rays; result i belongs to rays[i].
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st);
+
+}  // namespace pluecker

