@@ -27,14 +27,27 @@ build: setup
 	  || { cat $(BUILD).configure.log; exit 1; }
 	@cmake --build $(BUILD) -j$(JOBS)
 
-# The main job: golden-model render of the default scene into out/.
+# The main job (recipe: study helper's block below): the golden-model render
+# of SCENE with the fixed-point test, the same render with every box test
+# answered by the Verilated RTL (the sim block's sim-render), their byte-for-
+# byte comparison (fails loudly), and out/report/main.html.
 main: build
-	@mkdir -p $(OUT)
-	$(CLI) render --scene $(SCENE) --test fixed --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
-	  --size $(SIZE) --out $(OUT)/$(SCENE)_fixed.png --stats $(OUT)/$(SCENE)_fixed.json
-	$(CLI) render --scene $(SCENE) --test pluecker --order dsa \
-	  --size $(SIZE) --out $(OUT)/$(SCENE)_pluecker.png --stats $(OUT)/$(SCENE)_pluecker.json
-	@echo "main: images and statistics in $(OUT)/"
+	@mkdir -p $(OUT)/report
+	$(CLI) render --scene $(SCENE) --test fixed --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) --mode $(MODE) \
+	  --order dsa --size $(SIZE) --quiet --out $(MAIN_MODEL).png --stats $(MAIN_MODEL).json
+	@$(MAKE) --no-print-directory sim-render SCENE=$(SCENE) COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) \
+	  MODE=$(MODE) SIM_SIZE=$(SIZE)
+	@$(ENV) python scripts/main_report.py --scene $(SCENE) --cli $(CLI) --jobs $(JOBS) \
+	  --model-png $(MAIN_MODEL).png --model-json $(MAIN_MODEL).json --rtl-png $(MAIN_RTL).png \
+	  --rtl-json $(MAIN_RTL).json --out $(OUT)/report/main.html \
+	  --sweep-size $(MAIN_SWEEP_SIZE) --sweep-widths $(MAIN_SWEEP_WIDTHS)
+	@if cmp $(MAIN_MODEL).png $(MAIN_RTL).png; then \
+	  echo "main: PASS: the RTL render is bit-identical to the golden model's ($(MAIN_RTL).png)"; \
+	  echo "main: report in $(OUT)/report/main.html"; \
+	else \
+	  echo "main: FAIL: the RTL render $(MAIN_RTL).png differs from the golden model's $(MAIN_MODEL).png" >&2; \
+	  echo "main: see $(OUT)/report/main.html" >&2; exit 1; \
+	fi
 
 test: test-cpp lint test-tb
 
@@ -128,11 +141,13 @@ test-sanitize: setup
 	@mkdir -p build; start=$$(date +%s); \
 	cmake -S model -B $(SANITIZE_BUILD) -DPLUECKER_SANITIZE=ON -DPLUECKER_PYTHON=OFF \
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+	  -DCMAKE_CXX_FLAGS="-fsanitize=float-cast-overflow" \
 	  > $(SANITIZE_BUILD).configure.log 2>&1 || { cat $(SANITIZE_BUILD).configure.log; exit 1; }; \
 	cmake --build $(SANITIZE_BUILD) -j$(JOBS) || exit 1; \
 	built=$$(date +%s); \
 	cd $(SANITIZE_BUILD) && \
 	ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1 \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/model/fuzz/lsan.supp:print_suppressions=0 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	ctest --output-on-failure -j$(JOBS) $(SANITIZE_CTEST_ARGS); rc=$$?; \
 	done=$$(date +%s); \
@@ -141,3 +156,46 @@ test-sanitize: setup
 hostile-table: build
 	$(ENV) python scripts/hostile_table.py --cli $(CLI)
 # ---- end of hostile input ----------------------------------------------------
+
+# ---- Width study, plan and report (owner: study helper) ---------------------
+# make report   speed-for-accuracy report of every scene (teapot, spheres,
+#               ../shared/scenes/* when present) over REPORT_WIDTHS at
+#               REPORT_SIZE: out/report/report.html + report.json.
+#               REPORT_SYNTH=1 runs `make synth` for widths not measured yet;
+#               REPORT_RTL_WIDTHS: widths of the RTL vs model check.
+# make plan     the narrowest widths whose extra box tests on SCENE stay within
+#               MAX_EXTRA_WORK percent; writes PLAN_OUT (make variables).
+# PLAN=FILE     includes a plan file (COORD_BITS := ..), e.g.
+#               `make synth PLAN=out/plan.mk`; widths given on the command line
+#               still win. Its values reach recipes expanded at run time
+#               (synth, main, report, plan), not variables fixed with := above.
+ifdef PLAN
+include $(PLAN)
+endif
+REPORT_WIDTHS     ?= 6:24:2
+REPORT_SIZE       ?= 128
+REPORT_SYNTH      ?= 0
+REPORT_SCENES     ?= auto
+REPORT_RTL_WIDTHS ?= 8 16 24
+REPORT_RTL_SIZE   ?= 48
+MAX_EXTRA_WORK    ?= 1
+PLAN_WIDTHS       ?= 6:24
+PLAN_SIZE         ?= 128
+PLAN_OUT          ?= $(OUT)/plan.mk
+MAIN_SWEEP_SIZE   ?= 64
+MAIN_SWEEP_WIDTHS ?= 8:24:4
+MAIN_MODEL         = $(OUT)/$(SCENE)_model_$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
+MAIN_RTL           = $(OUT)/$(SCENE)_rtl_$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
+
+.PHONY: report plan
+
+report: build
+	$(ENV) python scripts/report.py --cli $(CLI) --size $(REPORT_SIZE) --widths $(REPORT_WIDTHS) \
+	  --scenes $(REPORT_SCENES) --synth $(REPORT_SYNTH) --rtl-widths "$(REPORT_RTL_WIDTHS)" \
+	  --rtl-size $(REPORT_RTL_SIZE) --jobs $(JOBS) --out $(OUT)/report
+
+plan: build
+	@mkdir -p $(dir $(PLAN_OUT))
+	$(CLI) plan --scene $(SCENE) --max-extra-work $(MAX_EXTRA_WORK) --widths $(PLAN_WIDTHS) \
+	  --size $(PLAN_SIZE) --out $(PLAN_OUT)
+# ---- end of width study, plan and report ------------------------------------

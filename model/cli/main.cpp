@@ -16,6 +16,7 @@ constexpr const char* kUsage =
     "  query    answer ray/box queries from a file (1 = hit, 0 = miss)\n"
     "  trace    write the ray/box queries a traversal issues\n"
     "  plan     pick the smallest fixed-point widths a scene needs\n"
+    "  study    extra traversal work and accuracy per fixed-point width\n"
     "run 'pluecker <command> --help' for its options\n";
 
 }  // namespace
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
         if (cmd == "query") return cmd_query(rest);
         if (cmd == "trace") return cmd_trace(rest);
         if (cmd == "plan") return cmd_plan(rest);
+        if (cmd == "study") return cmd_study(rest);
         std::fprintf(stderr, "pluecker: unknown command '%s'\n%s", cmd.c_str(), kUsage);
         return 2;
     } catch (const pluecker::InputError& e) {

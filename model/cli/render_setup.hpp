@@ -60,8 +60,11 @@ inline Vec3 parse_vec3(const Args& a, const std::string& name, const Vec3& fallb
     return v;
 }
 
+// The scene, BVH, Accel and options (pluecker/render.hpp's RenderSetup).
+using SceneSetup = RenderSetup;
+
 // Everything a render or a trace needs, built from the flags.
-inline std::unique_ptr<RenderSetup> make_setup(const Args& a) {
+inline std::unique_ptr<SceneSetup> make_setup(const Args& a) {
     RenderOptions o;
     o.test = parse_box_test(a.get("test", "pluecker"));
     o.order = parse_child_order(a.get("order", "dsa"));

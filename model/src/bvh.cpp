@@ -22,6 +22,15 @@
 #include <cmath>
 #include <memory>
 
+// The tree must not depend on the target: no fused multiply-adds in the
+// areas and costs (GCC contracts by default in GNU mode, and aarch64 or
+// -march=native have FMA).
+#if defined(__clang__)
+#pragma STDC FP_CONTRACT OFF
+#elif defined(__GNUC__)
+#pragma GCC optimize("fp-contract=off")
+#endif
+
 namespace pluecker {
 namespace {
 
@@ -380,6 +389,16 @@ struct Builder {
         const std::uint32_t n = t.end - t.begin;
         if (n == 1) return leaf(t);
         const bool may_leaf = n <= static_cast<std::uint32_t>(opt.sah_max_leaf_size);
+        const float area = nodes[t.node].box.half_area();
+        const float ci = opt.cost_intersect;
+        // Cheap leaf test first: every split costs at least
+        // cost_traverse*A + cost_intersect*sum(prim areas) (a child's box
+        // contains each of its prims' boxes); for two prims that is exact.
+        if (may_leaf) {
+            float sum = 0.0f;
+            for (std::uint32_t i = t.begin; i < t.end; ++i) sum += prims[i].b.half_area();
+            if (static_cast<float>(n) * ci * area <= opt.cost_traverse * area + ci * sum) return leaf(t);
+        }
         const float nb = static_cast<float>(opt.bins);
         V4 scale{};
         bool any = false;
@@ -392,16 +411,6 @@ struct Builder {
         if (!any) {  // all centroids coincide
             if (may_leaf) return leaf(t);
             return split_object_median(t, widest_axis(t.cent));
-        }
-        const float area = nodes[t.node].box.half_area();
-        const float ci = opt.cost_intersect;
-        // Cheap leaf test first: every split costs at least
-        // cost_traverse*A + cost_intersect*sum(prim areas) (a child's box
-        // contains each of its prims' boxes); for two prims that is exact.
-        if (may_leaf) {
-            float sum = 0.0f;
-            for (std::uint32_t i = t.begin; i < t.end; ++i) sum += prims[i].b.half_area();
-            if (static_cast<float>(n) * ci * area <= opt.cost_traverse * area + ci * sum) return leaf(t);
         }
         const BinMap map{t.cent.lo, scale, splat(nb - 1.0f)};
         std::uint64_t used[3];
@@ -446,6 +455,12 @@ struct Builder {
                 sah_node(t);
         }
     }
+};
+
+// Frees the prim array (trivially destructible records).
+struct PrimStore {
+    std::size_t n;
+    void operator()(Prim* p) const { std::allocator<Prim>().deallocate(p, n); }
 };
 
 std::string where_tri(std::size_t i) { return "build_bvh: triangle " + std::to_string(i); }
@@ -524,11 +539,11 @@ Bvh build_bvh(std::span<const Vec3> vertices, std::span<const std::array<std::ui
 
     Bvh bvh;
     bvh.tri_order.resize(n);
-    // Default-initialised on purpose: every record is written below.
-    std::unique_ptr<Prim[]> prims(new Prim[n]);
+    // Raw storage, each record constructed once below (no default fill).
+    std::unique_ptr<Prim[], PrimStore> prims(std::allocator<Prim>().allocate(n), PrimStore{n});
     VBox box, cent;
     for (std::size_t i = 0; i < n; ++i) {
-        prims[i].b = tri_bounds(vertices, triangles[i], i);
+        std::construct_at(&prims[i], Prim{tri_bounds(vertices, triangles[i], i)});
         bvh.tri_order[i] = static_cast<std::uint32_t>(i);
         box.grow(prims[i].b);
         cent.grow(prims[i].centroid2());

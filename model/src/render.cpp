@@ -330,7 +330,7 @@ std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, co
     if (opts.test == BoxTestKind::Fixed) opts.fixed.validate();
     auto s = std::make_unique<RenderSetup>();
     s->opts = opts;
-    s->build = build;
+    s->build = build.method;
     s->mesh = make_scene(scene_spec);
     s->bvh = build_bvh(s->mesh, build);
     s->accel = std::make_unique<Accel>(s->mesh, s->bvh);

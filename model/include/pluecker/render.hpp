@@ -104,7 +104,7 @@ struct RenderScene {
 struct RenderSetup {
     Mesh mesh;
     Bvh bvh;
-    BuildOptions build;
+    BuildMethod build = BuildMethod::Sah;
     std::unique_ptr<Accel> accel;
     std::unique_ptr<RenderScene> scene;
     RenderOptions opts;
@@ -137,7 +137,7 @@ std::uint64_t trace_render(const RenderScene& scene, const RenderOptions& opts, 
 nlohmann::json stats_json(const RenderScene& scene, const Bvh& bvh, BuildMethod build, const RenderOptions& opts,
                           const RenderStats& st);
 inline nlohmann::json stats_json(const RenderSetup& s, const RenderStats& st) {
-    return stats_json(*s.scene, s.bvh, s.build.method, s.opts, st);
+    return stats_json(*s.scene, s.bvh, s.build, s.opts, st);
 }
 
 }  // namespace pluecker

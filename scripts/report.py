@@ -1,0 +1,497 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""The speed-for-accuracy report (`make report`): for each scene and width
+pair, the study figures of `pluecker study` (per-query false hits and misses,
+extra traversal work, nearest-mode image errors), the hardware cost from
+`make synth` (out/synth/<C>x<D>/summary.json), the derived throughput per
+unit and per LFE5U-85F, and the golden-model comparison (RTL vs model with
+the Verilator harness, model vs float Pluecker, float vs exact).
+
+Output: out/report/report.html (self-contained: tables and base64 PNG
+plots), out/report/report.json (every figure), out/report/plots/*.png.
+Definitions of the figures: model/include/pluecker/study.hpp.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import re
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import report_lib as rl  # noqa: E402
+from report_lib import ROOT, fmt, say, table  # noqa: E402
+
+SHARED_SCENES = ROOT.parent / "shared" / "scenes"
+
+
+def parse_args(argv):
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--cli", default=str(ROOT / "build" / "model" / "pluecker"), help="the pluecker CLI")
+    p.add_argument("--out", default=str(ROOT / "out" / "report"), help="output directory")
+    p.add_argument("--size", type=int, default=128, help="study image size N (N x N)")
+    p.add_argument("--widths", default="6:24:2", help="width pairs (the CLI's --widths syntax)")
+    p.add_argument("--scenes", default="auto",
+                   help="comma list of scene specs; 'auto' = teapot, spheres and ../shared/scenes/* when present")
+    p.add_argument("--order", default="dsa", choices=("fixed", "dsa"))
+    p.add_argument("--build", default="sah", choices=("sah", "median"))
+    p.add_argument("--synth", type=int, choices=(0, 1), default=0,
+                   help="1: run `make synth` for widths without out/synth/<C>x<D>/summary.json")
+    p.add_argument("--synth-dir", default=str(ROOT / "out" / "synth"))
+    p.add_argument("--rtl-widths", default="8 16 24",
+                   help="widths for the RTL vs model check ('' to skip); builds the harness when missing")
+    p.add_argument("--sim-root", default=str(ROOT / "build" / "sim"),
+                   help="where the harness builds live (<root>/<C>x<D>/pluecker_sim)")
+    p.add_argument("--rtl-size", type=int, default=48, help="image size of the traced render for the RTL check")
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--make", default=os.environ.get("MAKE", "make"))
+    p.add_argument("--from-json", help="redo hardware, plots and HTML from an earlier report.json (no runs)")
+    return p.parse_args(argv)
+
+
+def scene_list(spec: str) -> list[str]:
+    if spec != "auto":
+        return [s for s in spec.split(",") if s]
+    scenes = ["teapot", "spheres"]
+    if SHARED_SCENES.is_dir():
+        files = sorted(f for f in SHARED_SCENES.iterdir() if f.suffix.lower() in (".obj", ".ply"))
+        scenes += [os.path.relpath(f, ROOT) for f in files]
+        say(f"report: scenes from {SHARED_SCENES}: {', '.join(f.name for f in files) or 'none'}")
+    else:
+        say(f"report: {SHARED_SCENES} absent: built-in scenes only")
+    return scenes
+
+
+def short_name(spec: str) -> str:
+    return Path(spec).name if ("/" in spec or "." in spec) else spec
+
+
+# --------------------------------------------------------------------------
+# Measurements
+
+def run_study(args, spec: str, outdir: Path) -> dict:
+    path = outdir / f"study_{re.sub(r'[^A-Za-z0-9_.-]', '_', short_name(spec))}.json"
+    r = rl.run([args.cli, "study", "--scene", spec, "--size", args.size, "--widths", args.widths,
+                "--order", args.order, "--build", args.build, "--threads", args.jobs, "--json", path])
+    sys.stdout.write(r.stdout)
+    with open(path) as f:
+        j = json.load(f)
+    j["study_file"] = str(path.relative_to(ROOT)) if path.resolve().is_relative_to(ROOT) else str(path)
+    j["study_seconds_wall"] = round(r.seconds, 1)
+    return j
+
+
+def ensure_synth(args, widths, synth_dir: Path) -> None:
+    for c, d in widths:
+        if (synth_dir / rl.pair_name(c, d) / "summary.json").exists():
+            continue
+        if not args.synth:
+            continue
+        say(f"report: synthesising {c}x{d} (REPORT_SYNTH=1)")
+        rl.run([args.make, "--no-print-directory", "synth", f"COORD_BITS={c}", f"DIR_BITS={d}", f"JOBS={args.jobs}"],
+               check=False)
+
+
+def sim_binary(args, w: int) -> tuple[Path | None, str]:
+    """Builds (or finds up to date) the harness for w x w conservative."""
+    out = Path(args.sim_root) / f"{w}x{w}"
+    if not (ROOT / "rtl" / "pluecker_intersector.sv").exists():
+        return None, "rtl/pluecker_intersector.sv missing"
+    env = dict(os.environ, COORD_BITS=str(w), DIR_BITS=str(w), MODE="conservative",
+               MODEL_BUILD=str(Path(args.cli).resolve().parent), SIM_OUT=str(out), SIM_JOBS=str(args.jobs))
+    say(f"report: Verilator harness {w}x{w} (built when missing or out of date)")
+    r = rl.run([ROOT / "scripts" / "venv-exec.sh", ROOT / "sim" / "build.sh"], env=env, check=False, capture=True)
+    if r.returncode != 0:
+        return None, f"sim/build.sh failed: {(r.stderr or '').strip()[-400:]}"
+    return out / "pluecker_sim", ""
+
+
+CHECK_RE = re.compile(r"check \(([^)]*)\): (\d+) queries, (\d+) mismatches")
+
+
+def rtl_check(args, sim: Path, w: int, spec: str, tmpdir: Path) -> dict:
+    trace = tmpdir / f"trace_{w}.txt"
+    rl.run([args.cli, "trace", "--scene", spec, "--size", args.rtl_size, "--test", "fixed", "--coord-bits", w,
+            "--dir-bits", w, "--order", args.order, "--build", args.build, "--quiet", "--out", trace])
+    r = rl.run([sim, "query", "--check", "--coord-bits", w, "--dir-bits", w, trace], check=False, capture=True)
+    trace.unlink(missing_ok=True)
+    m = CHECK_RE.search(r.stderr or "")
+    res = {"coord_bits": w, "dir_bits": w, "size": args.rtl_size, "exit": r.returncode,
+           "queries": int(m.group(2)) if m else None, "mismatches": int(m.group(3)) if m else None}
+    if not m:
+        res["error"] = (r.stderr or "").strip()[-400:]
+    say(f"report: RTL vs model {short_name(spec)} {w}x{w}: "
+        + (f"{res['queries']} queries, {res['mismatches']} mismatches" if m else f"FAILED: {res.get('error')}"))
+    return res
+
+
+# --------------------------------------------------------------------------
+# Derived figures
+
+def derived(studies: dict, hw: dict) -> dict:
+    """Effective rays per second per chip: the chip's box tests per second
+    over the box tests per ray of the conservative render at that width."""
+    out = {}
+    for name, j in studies.items():
+        ref_bpr = j["reference"]["per_ray"]["box_tests"]
+        per_w = {}
+        for w in j["widths"]:
+            key = rl.pair_name(w["coord_bits"], w["dir_bits"])
+            h = hw.get(key)
+            bpr = w["work"]["per_ray"]["box_tests"]
+            e = {"box_tests_per_ray": bpr, "reference_box_tests_per_ray": ref_bpr}
+            if h and h["box_tests_per_s_per_chip"]:
+                e["rays_per_s_per_chip"] = {sp: v / bpr for sp, v in h["box_tests_per_s_per_chip"].items()}
+                e["rays_per_s_per_unit"] = {sp: v / bpr for sp, v in h["box_tests_per_s_per_unit"].items()}
+                # What the same chip would reach without the extra work.
+                e["rays_per_s_per_chip_without_extra_work"] = {
+                    sp: v / ref_bpr for sp, v in h["box_tests_per_s_per_chip"].items()}
+            per_w[key] = e
+        out[name] = per_w
+    return out
+
+
+# --------------------------------------------------------------------------
+# Plots
+
+MARKERS = "osD^v<>p*h"
+
+
+def widths_of(j):
+    return [w["coord_bits"] for w in j["widths"]]
+
+
+def wlabel(j):
+    return [rl.pair_name(w["coord_bits"], w["dir_bits"]) for w in j["widths"]]
+
+
+def plot_all(studies: dict, hw: dict, der: dict, plotdir: Path, hw_dir: str) -> dict[str, str]:
+    plt = rl.mpl()
+    plots = {}
+    names = list(studies)
+    equal = all(w["coord_bits"] == w["dir_bits"] for j in studies.values() for w in j["widths"])
+    xlab = "COORD_BITS = DIR_BITS" if equal else "width pair (COORD_BITS; see table for DIR_BITS)"
+
+    def save(key, fig, alt):
+        h, data = rl.fig_html(fig, alt)
+        (plotdir / f"{key}.png").write_bytes(data)
+        plots[key] = h
+
+    # 1. Extra work.
+    fig, ax = plt.subplots()
+    for i, n in enumerate(names):
+        j = studies[n]
+        ax.plot(widths_of(j), [w["work"]["extra_percent"]["box_tests"] for w in j["widths"]],
+                marker=MARKERS[i % len(MARKERS)], label=n)
+    ax.set_yscale("symlog", linthresh=0.01)
+    ax.set_xlabel(xlab)
+    ax.set_ylabel("extra box tests vs exact [%]")
+    ax.set_title("Extra traversal work of the conservative fixed-point test")
+    ax.set_xticks(widths_of(studies[names[0]]))
+    ax.legend(fontsize=8)
+    save("extra_work", fig, "extra box tests per width")
+
+    # 2. False-hit rates per query.
+    fig, ax = plt.subplots()
+    for i, n in enumerate(names):
+        j = studies[n]
+        c = f"C{i}"
+        ax.plot(widths_of(j), [w["query"]["conservative"]["false_hit_rate"] or float("nan") for w in j["widths"]],
+                marker=MARKERS[i % len(MARKERS)], color=c, label=f"{n} conservative")
+        ax.plot(widths_of(j), [w["query"]["nearest"]["false_hit_rate"] or float("nan") for w in j["widths"]],
+                marker=MARKERS[i % len(MARKERS)], color=c, ls="--", alpha=0.6, label=f"{n} nearest")
+    ax.set_yscale("log")
+    ax.set_xlabel(xlab)
+    ax.set_ylabel("false hits / exact misses")
+    ax.set_title("Per-query false-hit rate (zero rates not drawn)")
+    ax.set_xticks(widths_of(studies[names[0]]))
+    ax.legend(fontsize=7, ncol=2)
+    save("false_hits", fig, "false-hit rate per width")
+
+    # 3. Nearest mode: wrong pixels and false misses.
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10.5, 3.9))
+    for i, n in enumerate(names):
+        j = studies[n]
+        a1.plot(widths_of(j), [100.0 * w["nearest"]["wrong_pixel_fraction"] for w in j["widths"]],
+                marker=MARKERS[i % len(MARKERS)], label=n)
+        q = j["queries"]["count"]
+        a2.plot(widths_of(j), [w["query"]["nearest"]["false_misses"] / q * 1e6 for w in j["widths"]],
+                marker=MARKERS[i % len(MARKERS)], label=n)
+    for a, t, yl in ((a1, "Nearest mode: wrong pixels", "pixels differing from exact [%]"),
+                     (a2, "Nearest mode: false misses", "false misses per million queries")):
+        a.set_yscale("symlog", linthresh=0.01 if a is a1 else 1)
+        a.set_xlabel(xlab)
+        a.set_ylabel(yl)
+        a.set_title(t)
+        a.set_xticks(widths_of(studies[names[0]]))
+    a1.legend(fontsize=8)
+    save("nearest", fig, "nearest mode errors")
+
+    # 4. Hardware and effective throughput (measured widths only).
+    measured = sorted(((k, v) for k, v in hw.items() if v), key=lambda kv: int(kv[0].split("x")[0]))
+    if measured:
+        all_x = sorted({int(k.split("x")[0]) for k in hw})
+        fig, (a1, a2) = plt.subplots(1, 2, figsize=(10.5, 3.9))
+        xs = [int(k.split("x")[0]) for k, _ in measured]
+        cap = rl.device_capacity(Path(hw_dir))[0]
+        for lab, key, capk, m in (("LUT4 slots (placed TRELLIS_COMB)", "placed_comb", "TRELLIS_COMB", "o"),
+                                  ("FF", "TRELLIS_FF", "TRELLIS_FF", "s"),
+                                  ("MULT18X18D", "MULT18X18D", "MULT18X18D", "D")):
+            a1.plot(xs, [100.0 * (v[key] or 0) / cap[capk] for _, v in measured], marker=m, label=lab)
+        a1.set_xlabel("COORD_BITS (= DIR_BITS)")
+        a1.set_ylabel(f"share of one {rl.DEVICE} per unit [%]")
+        a1.set_title("Cost of one unit (measured widths only)")
+        a1.set_xticks(all_x)
+        a1.set_xlim(all_x[0] - 0.5, all_x[-1] + 0.5)
+        a1.set_ylim(bottom=0)
+        a1.legend(fontsize=8)
+        speeds = sorted({sp for _, v in measured for sp in v["fmax_mhz"]})
+        sp = speeds[-1] if speeds else None
+        a2.set_xticks(all_x)
+        a2.set_xlim(all_x[0] - 0.5, all_x[-1] + 0.5)
+        if sp:
+            for i, n in enumerate(names):
+                pts = sorted((int(k.split("x")[0]), der[n][k]["rays_per_s_per_chip"][sp] / 1e6)
+                             for k in der[n] if sp in der[n][k].get("rays_per_s_per_chip", {}))
+                if pts:
+                    a2.plot([p[0] for p in pts], [p[1] for p in pts], marker=MARKERS[i % len(MARKERS)], label=n)
+            a2.set_title(f"Effective rays/s per {rl.DEVICE} (speed grade {sp})")
+            a2.set_ylabel("million rays per second")
+            a2.set_xlabel("COORD_BITS (= DIR_BITS)")
+            a2.set_ylim(bottom=0)
+            a2.legend(fontsize=8)
+        else:
+            a2.text(0.5, 0.5, "Fmax not measured (no place and route)", ha="center", transform=a2.transAxes)
+        save("hardware", fig, "hardware cost and throughput")
+    return plots
+
+
+# --------------------------------------------------------------------------
+# HTML
+
+def scene_section(name: str, j: dict, rtl: list[dict]) -> list[str]:
+    ref = j["reference"]
+    q = j.get("queries", {})
+    b = [f"<h3>{rl.esc(name)}</h3>",
+         f"<p>{j['triangles']:,} triangles, BVH {j['bvh']['nodes']:,} nodes (depth {j['bvh']['depth']}), "
+         f"{j['build']} build, order {j['order']}, {j['width']}&times;{j['height']} pixels, "
+         f"{ref['rays']['total']:,} rays ({ref['rays']['camera']:,} camera, {ref['rays']['shadow']:,} shadow, "
+         f"{ref['rays']['reflection']:,} reflection, {ref['rays']['refraction']:,} refraction). "
+         f"Exact reference: {fmt(ref['per_ray']['box_tests'], 2)} box tests, "
+         f"{fmt(ref['per_ray']['node_visits'], 2)} node visits, {fmt(ref['per_ray']['triangle_tests'], 2)} "
+         f"triangle tests per ray; {q.get('count', 0):,} box queries. Study: {j['seconds']:.1f} s.</p>"]
+    rows = []
+    for w in j["widths"]:
+        qc, qn, wk, nr = w["query"]["conservative"], w["query"]["nearest"], w["work"], w["nearest"]
+        rows.append([rl.pair_name(w["coord_bits"], w["dir_bits"]),
+                     qc["false_misses"], qc["false_hit_rate"],
+                     wk["extra_percent"]["box_tests"], wk["extra_percent"]["node_visits"],
+                     wk["extra_percent"]["triangle_tests"], wk["per_ray"]["box_tests"], wk["wrong_pixels"],
+                     qn["false_misses"], qn["false_hit_rate"], nr["checked"]["false_misses"], nr["wrong_pixels"],
+                     100.0 * nr["wrong_pixel_fraction"]])
+    b.append(table(["C&times;D".replace("&times;", "x"), "cons. false misses", "cons. false-hit rate",
+                    "extra box tests %", "extra node visits %", "extra tri tests %", "box tests / ray",
+                    "cons. wrong px", "nearest false misses", "nearest false-hit rate",
+                    "nearest render false misses", "nearest wrong px", "nearest wrong px %"], rows))
+    if rtl:
+        b.append(table(["RTL check", "traced size", "queries compared", "mismatches", "exit"],
+                       [[rl.pair_name(r["coord_bits"], r["dir_bits"]), f"{r['size']}x{r['size']}",
+                         r.get("queries"), r.get("mismatches"), r["exit"]] for r in rtl]))
+    return b
+
+
+def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots, timing) -> None:
+    body = ["<h1>Fixed-point Plücker box test: speed for accuracy</h1>",
+            f"<p class='note'>Generated by <code>scripts/report.py</code> ({time.strftime('%Y-%m-%d %H:%M')}). "
+            f"Study size {args.size}&times;{args.size}, widths <code>{rl.esc(args.widths)}</code>, order "
+            f"{args.order}, {args.build} build. All figures are in <code>report.json</code>; per scene in "
+            "<code>study_*.json</code>.</p>",
+            "<h2>Definitions</h2><ul>"
+            "<li><b>Reference</b>: the fixed-point path's batched traversal (same pixels, ray trees and ray "
+            "clipping) with every box query answered by the exact test (rational arithmetic on the float "
+            "inputs). Per-query figures are measured on its box queries.</li>"
+            "<li><b>False miss</b>: exact hit, test miss. <b>False hit</b>: exact miss, test hit. "
+            "<b>False-hit rate</b> = false hits / exact misses.</li>"
+            "<li><b>Extra work</b> [%] = 100 &middot; (count<sub>W</sub> &minus; count<sub>exact</sub>) / "
+            "count<sub>exact</sub>, counts summed over all rays of the render (camera, shadow, reflection, "
+            "refraction) of a conservative render at width W. Box tests is the main figure: the RTL answers "
+            "one box test per clock. The conservative test never misses, so the rays are the reference's.</li>"
+            "<li><b>Nearest mode</b>: no margin (rounding to nearest), so boxes can be missed: wrong pixels "
+            "(any RGB byte differs from the reference image) and false misses of its own box queries.</li>"
+            "<li><b>Units per chip</b>: floor(capacity / use) for MULT18X18D, LUT4 slots (nextpnr's "
+            "TRELLIS_COMB, which includes the carry cells) and FF, the smallest of the three; an upper bound "
+            "with no routing or fill margin. Capacities: " + rl.esc(", ".join(f"{k} {v:,}" for k, v in cap.items()))
+            + f" ({rl.esc(cap_src)}). <b>Box tests per second per unit</b> = Fmax (one per clock). "
+            "<b>Effective rays per second per chip</b> = units &middot; Fmax / (box tests per ray at W).</li>"
+            "</ul>"]
+    body.append("<h2>Extra work and accuracy</h2>")
+    for k in ("extra_work", "false_hits", "nearest"):
+        body.append(plots[k])
+    for n in scenes:
+        if n in studies:
+            body += scene_section(n, studies[n], rtl.get(n, []))
+
+    body.append("<h2>Hardware per width (out/synth)</h2>")
+    rows = []
+    speeds = sorted({sp for v in hw.values() if v for sp in v["fmax_mhz"]})
+    for key, v in hw.items():
+        if not v:
+            rows.append([key, ("html", f"not measured (<code>make synth COORD_BITS={key.split('x')[0]} "
+                               f"DIR_BITS={key.split('x')[1]}</code> or REPORT_SYNTH=1)")] + [""] * (8 + 2 * len(speeds)))
+            continue
+        fm = [(f"{v['fmax_mhz'][sp]['median']:.1f} [{v['fmax_mhz'][sp]['min']:.1f}-{v['fmax_mhz'][sp]['max']:.1f}]"
+               if sp in v["fmax_mhz"] else "–") for sp in speeds]
+        chip = [(f"{v['box_tests_per_s_per_chip'][sp] / 1e9:.2f}" if sp in v["box_tests_per_s_per_chip"] else "–")
+                for sp in speeds]
+        rows.append([key, v["LUT4"], v["CCU2C"], v["TRELLIS_FF"], v["MULT18X18D"], v["placed_comb"], v["latency"],
+                     v["units_per_chip"], v["limited_by"] or "–"] + fm + chip)
+    body.append(table(["CxD", "LUT4", "CCU2C", "FF", "MULT18X18D", "LUT4 slots placed", "latency",
+                       "units/chip", "limited by"] + [f"Fmax MHz speed {sp} median [min-max] = M box tests/s/unit"
+                                                      for sp in speeds]
+                      + [f"G box tests/s/chip speed {sp}" for sp in speeds], rows))
+    if "hardware" in plots:
+        body.append(plots["hardware"])
+    if speeds:
+        body.append("<h3>Effective rays per second per chip (after the extra work)</h3>")
+        rows = []
+        for n, per_w in der.items():
+            for key, e in per_w.items():
+                if "rays_per_s_per_chip" not in e:
+                    continue
+                rows.append([n, key, e["box_tests_per_ray"], e["reference_box_tests_per_ray"]]
+                            + [e["rays_per_s_per_chip"].get(sp, 0) / 1e6 for sp in speeds]
+                            + [e["rays_per_s_per_chip_without_extra_work"].get(sp, 0) / 1e6 for sp in speeds])
+        body.append(table(["scene", "CxD", "box tests/ray", "exact box tests/ray"]
+                          + [f"M rays/s/chip speed {sp}" for sp in speeds]
+                          + [f"same without extra work, speed {sp}" for sp in speeds], rows, left=2))
+    else:
+        body.append("<p>Fmax not measured for any width of the sweep: no throughput figures.</p>")
+
+    body.append("<h2>Golden-model comparison</h2>")
+    body.append("<p>RTL vs model: the Verilated RTL (<code>pluecker_sim query --check</code>) on every query of "
+                "a traced fixed-point render (<code>pluecker trace --test fixed</code>), each answer compared "
+                "with the model's <code>fixed_hit</code>. Model vs float: the conservative fixed test against "
+                "float Plücker on the reference queries; float Plücker and Smits against exact.</p>")
+    rows = []
+    for n, lst in rtl.items():
+        for r in lst:
+            rows.append([n, rl.pair_name(r["coord_bits"], r["dir_bits"]), r.get("queries"), r.get("mismatches"),
+                         ("html", '<span class="ok">identical</span>') if r.get("mismatches") == 0 and r["exit"] == 0
+                         else ("html", f'<span class="bad">{rl.esc(r.get("error", "MISMATCH"))}</span>')])
+    body.append(table(["scene", "CxD", "queries compared", "mismatches", "verdict"], rows, left=2)
+                if rows else "<p>RTL check skipped (REPORT_RTL_WIDTHS empty or harness unavailable).</p>")
+    rows = []
+    for n, j in studies.items():
+        q = j["queries"]
+        for w in j["widths"]:
+            vp = w["query"]["vs_pluecker"]
+            rows.append([n, rl.pair_name(w["coord_bits"], w["dir_bits"]), q["count"], vp["fixed_hit_pluecker_miss"],
+                         vp["fixed_miss_pluecker_hit"]])
+    body.append(table(["scene", "CxD", "queries", "fixed hit, float Plücker miss", "fixed miss, float Plücker hit"],
+                      rows, left=2))
+    rows = [[n, j["queries"]["count"], j["queries"]["pluecker"]["false_misses"], j["queries"]["pluecker"]["false_hits"],
+             j["queries"]["smits"]["false_misses"], j["queries"]["smits"]["false_hits"],
+             j.get("direct_exact", {}).get("wrong_pixels")] for n, j in studies.items()]
+    body.append(table(["scene", "queries", "Plücker false misses", "Plücker false hits", "Smits false misses",
+                       "Smits false hits", "direct exact render vs reference: wrong px"], rows))
+    body.append(f"<p class='note'>Run time: {timing['total']:.0f} s (studies {timing['studies']:.0f} s, "
+                f"RTL checks {timing['rtl']:.0f} s, synthesis {timing['synth']:.0f} s).</p>")
+    (outdir / "report.html").write_text(rl.page("Plücker box test: speed for accuracy", body))
+
+
+def main(argv) -> int:
+    args = parse_args(argv)
+    t0 = time.monotonic()
+    outdir = Path(args.out)
+    outdir.mkdir(parents=True, exist_ok=True)
+    plotdir = outdir / "plots"
+    plotdir.mkdir(exist_ok=True)
+    tmpdir = outdir / "tmp"
+    tmpdir.mkdir(exist_ok=True)
+    if not Path(args.cli).exists():
+        raise SystemExit(f"report: {args.cli} not built (run 'make build')")
+    widths = rl.parse_widths(args.widths)
+    scenes = scene_list(args.scenes)
+    timing = {"studies": 0.0, "rtl": 0.0, "synth": 0.0}
+
+    studies = {}
+    prior = None
+    if args.from_json:
+        with open(args.from_json) as f:
+            prior = json.load(f)
+        studies = prior["scenes"]
+        scenes = prior["config"]["scenes"]
+    for i, spec in enumerate([] if prior else scenes):
+        name = short_name(spec)
+        if "/" in spec and not (ROOT / spec).exists() and not Path(spec).exists():
+            say(f"report: [{i + 1}/{len(scenes)}] {spec}: absent, skipped")
+            continue
+        say(f"report: [{i + 1}/{len(scenes)}] study of {name} ({args.size}x{args.size}, widths {args.widths})")
+        t = time.monotonic()
+        studies[name] = run_study(args, spec, outdir)
+        studies[name]["spec"] = spec
+        timing["studies"] += time.monotonic() - t
+    if not studies:
+        raise SystemExit("report: no scene to study")
+
+    t = time.monotonic()
+    synth_dir = Path(args.synth_dir)
+    ensure_synth(args, widths, synth_dir)
+    timing["synth"] = time.monotonic() - t
+    cap, cap_src = rl.device_capacity(synth_dir)
+    hw = {rl.pair_name(c, d): rl.hardware(synth_dir, c, d, cap) for c, d in widths}
+    for k, v in hw.items():
+        say(f"report: hardware {k}: " + ("not measured" if v is None else
+            f"{v['units_per_chip']} units/chip ({v['limited_by']}), Fmax {v['fmax_mhz'] and {s: f['median'] for s, f in v['fmax_mhz'].items()}}"))
+    der = derived(studies, hw)
+
+    t = time.monotonic()
+    rtl: dict[str, list] = {}
+    if prior:
+        rtl = prior["rtl_vs_model"]
+    for w in [] if prior else [int(x) for x in args.rtl_widths.replace(",", " ").split()]:
+        sim, why = sim_binary(args, w)
+        for name, j in studies.items():
+            if sim is None:
+                rtl.setdefault(name, []).append({"coord_bits": w, "dir_bits": w, "size": args.rtl_size, "exit": -1,
+                                                 "queries": None, "mismatches": None, "error": why})
+                continue
+            rtl.setdefault(name, []).append(rtl_check(args, sim, w, j["spec"], tmpdir))
+    timing["rtl"] = time.monotonic() - t
+
+    plots = plot_all(studies, hw, der, plotdir, args.synth_dir)
+    timing["total"] = time.monotonic() - t0
+    write_html(args, outdir, scenes=[short_name(s) for s in scenes], studies=studies, rtl=rtl, hw=hw, der=der,
+               cap=cap, cap_src=cap_src, plots=plots, timing=timing)
+    report = {
+        "config": {"size": args.size, "widths": args.widths, "order": args.order, "build": args.build,
+                   "scenes": scenes, "rtl_widths": args.rtl_widths, "rtl_size": args.rtl_size,
+                   "synth": bool(args.synth)},
+        "device": {"name": rl.DEVICE, "capacity": cap, "capacity_source": cap_src},
+        "scenes": studies,
+        "hardware": hw,
+        "derived": der,
+        "rtl_vs_model": rtl,
+        "timing_seconds": {k: round(v, 1) for k, v in timing.items()},
+    }
+    with open(outdir / "report.json", "w") as f:
+        json.dump(report, f, indent=1)
+        f.write("\n")
+    try:
+        tmpdir.rmdir()
+    except OSError:
+        pass
+    bad = [r for lst in rtl.values() for r in lst if r.get("mismatches") not in (0, None) or
+           (r.get("mismatches") is None and r["exit"] != -1)]
+    say(f"report: {outdir / 'report.html'} and report.json in {timing['total']:.0f} s")
+    if bad:
+        say(f"report: RTL vs model MISMATCH in {len(bad)} checks (see the report)")
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
