@@ -166,7 +166,9 @@ def fmt(v, digits: int = 3) -> str:
     if isinstance(v, float):
         if math.isinf(v) or math.isnan(v):
             return str(v)
-        if v != 0 and abs(v) < 10 ** -digits:
+        if v == 0:
+            return "0"
+        if abs(v) < 0.01:
             return f"{v:.2e}"
         return f"{v:,.{digits}f}"
     return str(v)
