@@ -79,7 +79,7 @@ def run_study(args, spec: str, outdir: Path) -> dict:
     sys.stdout.write(r.stdout)
     with open(path) as f:
         j = json.load(f)
-    j["study_file"] = str(path.relative_to(ROOT)) if path.resolve().is_relative_to(ROOT) else str(path)
+    j["study_file"] = rl.rel(path)
     j["study_seconds_wall"] = round(r.seconds, 1)
     return j
 
@@ -194,21 +194,19 @@ def plot_all(studies: dict, hw: dict, der: dict, plotdir: Path, hw_dir: str) -> 
     ax.legend(fontsize=8)
     save("extra_work", fig, "extra box tests per width")
 
-    # 2. False-hit rates per query.
-    fig, ax = plt.subplots()
-    for i, n in enumerate(names):
-        j = studies[n]
-        c = f"C{i}"
-        ax.plot(widths_of(j), [w["query"]["conservative"]["false_hit_rate"] or float("nan") for w in j["widths"]],
-                marker=MARKERS[i % len(MARKERS)], color=c, label=f"{n} conservative")
-        ax.plot(widths_of(j), [w["query"]["nearest"]["false_hit_rate"] or float("nan") for w in j["widths"]],
-                marker=MARKERS[i % len(MARKERS)], color=c, ls="--", alpha=0.6, label=f"{n} nearest")
-    ax.set_yscale("log")
-    ax.set_xlabel(xlab)
-    ax.set_ylabel("false hits / exact misses")
-    ax.set_title("Per-query false-hit rate (zero rates not drawn)")
-    ax.set_xticks(widths_of(studies[names[0]]))
-    ax.legend(fontsize=7, ncol=2)
+    # 2. False-hit rates per query, conservative and nearest side by side.
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 3.9), sharey=True)
+    for ax, mode in zip(axes, ("conservative", "nearest")):
+        for i, n in enumerate(names):
+            j = studies[n]
+            ax.plot(widths_of(j), [w["query"][mode]["false_hit_rate"] or float("nan") for w in j["widths"]],
+                    marker=MARKERS[i % len(MARKERS)], label=n)
+        ax.set_yscale("log")
+        ax.set_xlabel(xlab)
+        ax.set_title(f"{mode.capitalize()}: false-hit rate per query")
+        ax.set_xticks(widths_of(studies[names[0]]))
+    axes[0].set_ylabel("false hits / exact misses (zeros not drawn)")
+    axes[0].legend(fontsize=8)
     save("false_hits", fig, "false-hit rate per width")
 
     # 3. Nearest mode: wrong pixels and false misses.
@@ -292,7 +290,7 @@ def scene_section(name: str, j: dict, rtl: list[dict]) -> list[str]:
                      wk["extra_percent"]["triangle_tests"], wk["per_ray"]["box_tests"], wk["wrong_pixels"],
                      qn["false_misses"], qn["false_hit_rate"], nr["checked"]["false_misses"], nr["wrong_pixels"],
                      100.0 * nr["wrong_pixel_fraction"]])
-    b.append(table(["C&times;D".replace("&times;", "x"), "cons. false misses", "cons. false-hit rate",
+    b.append(table(["CxD", "cons. false misses", "cons. false-hit rate",
                     "extra box tests %", "extra node visits %", "extra tri tests %", "box tests / ray",
                     "cons. wrong px", "nearest false misses", "nearest false-hit rate",
                     "nearest render false misses", "nearest wrong px", "nearest wrong px %"], rows))

@@ -70,6 +70,12 @@ def parse_widths(spec: str) -> list[tuple[int, int]]:
     return out
 
 
+def rel(path) -> str:
+    """A path relative to the project root when inside it."""
+    p = Path(path).resolve()
+    return str(p.relative_to(ROOT)) if p.is_relative_to(ROOT) else str(p)
+
+
 def pair_name(c: int, d: int) -> str:
     return f"{c}x{d}"
 
@@ -94,7 +100,7 @@ def device_capacity(synth_dir: Path) -> tuple[dict, str]:
             u = j["utilization"]
             cap = {k: u[k]["available"] for k in FALLBACK_CAPACITY if k in u}
             if len(cap) == len(FALLBACK_CAPACITY):
-                return cap, f"nextpnr report {rep.relative_to(ROOT) if rep.is_relative_to(ROOT) else rep}"
+                return cap, f"nextpnr report {rel(rep)}"
     return dict(FALLBACK_CAPACITY), "nextpnr-ecp5 --85k report (utilization.available), recorded in scripts/report_lib.py"
 
 
@@ -122,8 +128,7 @@ def hardware(synth_dir: Path, c: int, d: int, capacity: dict) -> dict | None:
     per_unit = {sp: f * 1e6 for sp, f in fmax.items()}  # one box test per clock
     per_chip = {sp: v * units for sp, v in per_unit.items()} if units else {}
     return {
-        "summary": str((synth_dir / pair_name(c, d) / "summary.json").relative_to(ROOT))
-        if (synth_dir / pair_name(c, d)).resolve().is_relative_to(ROOT) else str(synth_dir / pair_name(c, d)),
+        "summary": rel(synth_dir / pair_name(c, d) / "summary.json"),
         "pnr": bool(s.get("pnr")),
         "LUT4": u.get("LUT4"), "CCU2C": u.get("CCU2C"), "TRELLIS_FF": u.get("TRELLIS_FF"),
         "dut_ff": u.get("dut_ff"), "harness_ff": u.get("harness_ff"), "MULT18X18D": mult,

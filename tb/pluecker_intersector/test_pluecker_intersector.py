@@ -25,7 +25,7 @@ Environment
   PLUECKER_PY_DIR  directory of the pluecker_py module (see tb/conftest.py)
   PLUECKER_TB_BUILD  root of the per-parameter build directories
                      (default build/tb)
-  PLUECKER_RTL_DIR   directory holding pluecker_intersector.sv and lint.vlt
+  PLUECKER_RTL_DIR   directory holding the RTL (*.sv) and lint.vlt
                      (default rtl/; lets a mutated copy be checked)
 """
 
@@ -374,7 +374,7 @@ if pytest is not None:
                       "CONSERVATIVE": conservative}
         runner = get_runner("verilator")
         runner.build(
-            sources=[VerilatorControlFile(RTL_DIR / "lint.vlt"), RTL_DIR / "pluecker_intersector.sv"],
+            sources=[VerilatorControlFile(RTL_DIR / "lint.vlt"), *sorted(RTL_DIR.glob("*.sv"))],
             hdl_toplevel=TOPLEVEL,
             parameters=parameters,
             defines={"ASSERT_ON": 1},

@@ -1,0 +1,79 @@
+# SPDX-License-Identifier: MIT
+"""scripts/report.py in a tiny configuration (one scene, two widths, small
+image, no synthesis, no RTL check): the HTML page and the JSON exist and hold
+the expected figures; the hardware figures are derived from a summary.json
+when one is present and reported as not measured otherwise."""
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+MODEL_BUILD = Path(os.environ.get("PLUECKER_MODEL_BUILD") or os.environ.get("PLUECKER_PY_DIR")
+                   or ROOT / "build" / "model")
+CLI = MODEL_BUILD / "pluecker"
+sys.path.insert(0, str(ROOT / "scripts"))
+
+
+def run_report(tmp_path, synth_dir, extra=()):
+    if not CLI.exists():
+        pytest.skip(f"{CLI} not built")
+    out = tmp_path / "report"
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "report.py"), "--cli", str(CLI),
+                        "--scenes", "sphere:500", "--widths", "8,16", "--size", "16", "--rtl-widths", "",
+                        "--synth", "0", "--synth-dir", str(synth_dir), "--jobs", "1", "--out", str(out), *extra],
+                       cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    return out, r.stdout
+
+
+def test_tiny_report(tmp_path):
+    out, log = run_report(tmp_path, tmp_path / "no_synth")
+    assert "study of sphere:500" in log  # progress printed
+    html = (out / "report.html").read_text()
+    assert html.startswith("<!DOCTYPE html>") and "data:image/png;base64," in html
+    assert "not measured" in html
+    j = json.loads((out / "report.json").read_text())
+    for key in ("config", "device", "scenes", "hardware", "derived", "rtl_vs_model", "timing_seconds"):
+        assert key in j, key
+    s = j["scenes"]["sphere:500"]
+    assert [(w["coord_bits"], w["dir_bits"]) for w in s["widths"]] == [(8, 8), (16, 16)]
+    for w in s["widths"]:
+        assert w["query"]["conservative"]["false_misses"] == 0
+        assert w["work"]["wrong_pixels"] == 0
+        for k in ("extra_percent", "per_ray", "checked"):
+            assert k in w["work"], k
+        assert "wrong_pixels" in w["nearest"]
+        assert "vs_pluecker" in w["query"]
+    assert s["widths"][0]["work"]["extra_percent"]["box_tests"] >= s["widths"][1]["work"]["extra_percent"]["box_tests"]
+    for k in ("pluecker", "smits", "count"):
+        assert k in s["queries"], k
+    assert j["hardware"] == {"8x8": None, "16x16": None}
+    for name in ("extra_work", "false_hits", "nearest"):
+        assert (out / "plots" / f"{name}.png").stat().st_size > 1000
+
+
+def test_hardware_figures_from_a_summary(tmp_path):
+    import report_lib as rl
+    synth = tmp_path / "synth"
+    (synth / "16x16").mkdir(parents=True)
+    summary = {"utilisation": {"LUT4": 300, "CCU2C": 400, "TRELLIS_FF": 1700, "MULT18X18D": 12,
+                               "placed": {"TRELLIS_COMB": 1400, "TRELLIS_FF": 1700, "MULT18X18D": 12}},
+               "latency": 6, "pnr": True, "fmax_mhz": {"8": {"median": 150.0, "min": 140.0, "max": 160.0, "seeds": 3}}}
+    (synth / "16x16" / "summary.json").write_text(json.dumps(summary))
+    cap, src = rl.device_capacity(synth)
+    assert cap == rl.FALLBACK_CAPACITY and "nextpnr" in src
+    h = rl.hardware(synth, 16, 16, cap)
+    assert h["units_per_chip"] == 156 // 12 and h["limited_by"] == "MULT18X18D"
+    assert h["box_tests_per_s_per_unit"]["8"] == pytest.approx(150e6)
+    assert h["box_tests_per_s_per_chip"]["8"] == pytest.approx(13 * 150e6)
+    assert rl.hardware(synth, 12, 12, cap) is None
+    out, _ = run_report(tmp_path, synth)
+    j = json.loads((out / "report.json").read_text())
+    d = j["derived"]["sphere:500"]["16x16"]
+    bpr = j["scenes"]["sphere:500"]["widths"][1]["work"]["per_ray"]["box_tests"]
+    assert d["rays_per_s_per_chip"]["8"] == pytest.approx(13 * 150e6 / bpr)
+    assert (out / "plots" / "hardware.png").exists()
