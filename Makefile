@@ -23,7 +23,7 @@ setup:
 	@scripts/setup.sh
 
 build: setup
-	@cmake -S model -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=$(CURDIR)/.venv/bin/python > $(BUILD).configure.log 2>&1 \
+	@mkdir -p build; cmake -S model -B $(BUILD) -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=$(CURDIR)/.venv/bin/python > $(BUILD).configure.log 2>&1 \
 	  || { cat $(BUILD).configure.log; exit 1; }
 	@cmake --build $(BUILD) -j$(JOBS)
 
@@ -76,9 +76,9 @@ MODE         ?= conservative
 SIM_TAG_BITS ?= 8
 SIM_SIZE     ?= $(SIZE)
 SIM_N        ?= 2000000
-SIM_DIR      := build/sim/$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
-SIM_BIN      := $(SIM_DIR)/pluecker_sim
-SIM_VARS     := COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
+SIM_DIR       = build/sim/$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
+SIM_BIN       = $(SIM_DIR)/pluecker_sim
+SIM_VARS      = COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
                 MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS)
 
 .PHONY: sim sim-query sim-render sim-bench

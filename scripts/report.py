@@ -337,8 +337,9 @@ def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots,
     speeds = sorted({sp for v in hw.values() if v for sp in v["fmax_mhz"]})
     for key, v in hw.items():
         if not v:
-            rows.append([key, ("html", f"not measured (<code>make synth COORD_BITS={key.split('x')[0]} "
-                               f"DIR_BITS={key.split('x')[1]}</code> or REPORT_SYNTH=1)")] + [""] * (8 + 2 * len(speeds)))
+            rows.append([key, ("span", 8 + 2 * len(speeds),
+                               f"not measured (<code>make synth COORD_BITS={key.split('x')[0]} "
+                               f"DIR_BITS={key.split('x')[1]}</code>, or <code>make report REPORT_SYNTH=1</code>)")])
             continue
         fm = [(f"{v['fmax_mhz'][sp]['median']:.1f} [{v['fmax_mhz'][sp]['min']:.1f}-{v['fmax_mhz'][sp]['max']:.1f}]"
                if sp in v["fmax_mhz"] else "–") for sp in speeds]

@@ -181,11 +181,15 @@ def fmt(v, digits: int = 3) -> str:
 
 def table(head: list[str], rows: list[list], left: int = 1) -> str:
     """HTML table; the first `left` columns are left-aligned. Cells that are
-    already HTML can be passed as ('html', text)."""
+    already HTML can be passed as ('html', text), or ('span', n, html) over
+    n columns."""
     def cell(tag, v, i):
         cls = ' class="l"' if i < left else ""
         if isinstance(v, tuple) and v and v[0] == "html":
             return f"<{tag}{cls}>{v[1]}</{tag}>"
+        if isinstance(v, tuple) and v and v[0] == "span":  # ("span", columns, html)
+            return f'<{tag} class="l" colspan="{v[1]}">{v[2]}</{tag}>'
+
         return f"<{tag}{cls}>{esc(v if isinstance(v, str) else fmt(v))}</{tag}>"
     out = ["<table><tr>" + "".join(cell("th", h, i) for i, h in enumerate(head)) + "</tr>"]
     for r in rows:

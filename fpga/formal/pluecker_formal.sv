@@ -1,0 +1,167 @@
+// SPDX-License-Identifier: MIT
+// Formal harness for rtl/pluecker_intersector.sv (SymbiYosys, Yosys SMT flow;
+// see fpga/formal/README.md).
+//
+// The DUT is read with ASSERT_ON, so its own assertions (a_out_hold,
+// a_in_hold, a_credit_balance, a_ready_credit) are proof obligations here.
+// Every DUT input is a free variable in every cycle, except for what this
+// harness assumes about the environment:
+//   - rst_i is high in the first cycle;
+//   - the upstream side keeps the valid/ready rule the DUT's a_in_hold checks
+//     (a query offered and not taken is offered again, unchanged);
+//   - in_tag_i = {epoch, in_count}: in_count counts the queries taken since
+//     the last reset (mod 2^SEQ_BITS), epoch counts reset pulses
+//     (mod 2^EPOCH_BITS). Tags thus number the queries.
+// With the tags numbered, the harness proves:
+//   p_order         out_valid_o -> out_tag_o == {epoch, out_count}: results
+//                   leave in input order, none is lost or duplicated, and no
+//                   query taken before a reset leaves after it (it would
+//                   carry an older epoch; a leak across exactly a multiple
+//                   of 2^EPOCH_BITS reset pulses is the one case the epoch
+//                   cannot tell)
+//   p_outstanding   at most FIFO_DEPTH queries are accepted and not yet
+//                   delivered
+//   p_reset_quiet   in_ready_o and out_valid_o are low from the second reset
+//                   cycle on and in the first cycle after it
+//   p_ready_after   in_ready_o is high two cycles after the reset is released
+//   p_full_rate     in_ready_o is high whenever the previous cycle was not a
+//                   reset and had out_ready_i high: an unblocked output never
+//                   blocks the input (one query per clock)
+// and covers the FIFO full, a reset while it is full and stalled, a hit, and
+// FIFO_DEPTH results back to back.
+//
+// Widths: the datapath does not take part in any handshake, so the proof runs
+// at the smallest widths (6/6). The FIFO depth and the pipeline length do not
+// depend on the widths.
+`default_nettype none
+
+module pluecker_formal #(
+    parameter int COORD_BITS = 6,
+    parameter int DIR_BITS = 6,
+    parameter int SEQ_BITS = 5,    // > log2(FIFO_DEPTH + 1): in-order numbers never alias
+    parameter int EPOCH_BITS = 3,
+    parameter bit CONSERVATIVE = 1
+) (
+    input wire clk_i,
+    input wire rst_i,
+    input wire in_valid_i,
+    input wire [2:0] ray_class_i,
+    input wire [3*COORD_BITS-1:0] ray_org_i,
+    input wire [3*DIR_BITS-1:0] ray_dir_i,
+    input wire [3*COORD_BITS-1:0] ray_end_i,
+    input wire ray_end_valid_i,
+    input wire [3*COORD_BITS-1:0] box_min_i,
+    input wire [3*COORD_BITS-1:0] box_max_i,
+    input wire out_ready_i
+);
+  localparam int TAG_BITS = EPOCH_BITS + SEQ_BITS;
+  localparam int FIFO_DEPTH = 8;  // the DUT's: 1 << $clog2(LATENCY + 2), LATENCY = 6
+
+  wire in_ready_o, out_valid_o, out_hit_o;
+  wire [TAG_BITS-1:0] out_tag_o;
+
+  logic [EPOCH_BITS-1:0] epoch_q = '0;
+  logic [SEQ_BITS-1:0] in_count_q = '0, out_count_q = '0;
+  wire [TAG_BITS-1:0] in_tag_i = {epoch_q, in_count_q};
+
+  pluecker_intersector #(
+      .COORD_BITS(COORD_BITS),
+      .DIR_BITS(DIR_BITS),
+      .TAG_BITS(TAG_BITS),
+      .CONSERVATIVE(CONSERVATIVE)
+  ) dut (
+      .clk_i(clk_i),
+      .rst_i(rst_i),
+      .in_valid_i(in_valid_i),
+      .in_ready_o(in_ready_o),
+      .in_tag_i(in_tag_i),
+      .ray_class_i(ray_class_i),
+      .ray_org_i(ray_org_i),
+      .ray_dir_i(ray_dir_i),
+      .ray_end_i(ray_end_i),
+      .ray_end_valid_i(ray_end_valid_i),
+      .box_min_i(box_min_i),
+      .box_max_i(box_max_i),
+      .out_valid_o(out_valid_o),
+      .out_ready_i(out_ready_i),
+      .out_tag_o(out_tag_o),
+      .out_hit_o(out_hit_o)
+  );
+
+  wire take = in_valid_i && in_ready_o && !rst_i;
+  wire give = out_valid_o && out_ready_i && !rst_i;
+
+  // -------------------------------------------------------------------------
+  // History (initial values: the first cycle is cycle 0)
+  // -------------------------------------------------------------------------
+  logic first_q = 1'b1;  // cycle 0
+  logic rst1_q = 1'b0;  // rst_i in the previous cycle
+  logic rst2_q = 1'b0;  // ... two cycles ago
+  logic open1_q = 1'b0;  // previous cycle: not reset and out_ready_i high
+  logic in_stall_q = 1'b0;  // previous cycle: offered and not taken, no reset
+  localparam int IN_W = 3 + 4 * 3 * COORD_BITS + 3 * DIR_BITS + 1;
+  wire [IN_W-1:0] in_now = {
+    ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i
+  };
+  logic [IN_W-1:0] in_prev_q = '0;
+  logic [SEQ_BITS:0] burst_q = '0;  // consecutive output handshakes (saturating)
+  logic full_seen_q = 1'b0;
+  wire [SEQ_BITS-1:0] outstanding = in_count_q - out_count_q;
+
+  always_ff @(posedge clk_i) begin
+    first_q <= 1'b0;
+    rst1_q <= rst_i;
+    rst2_q <= rst1_q;
+    open1_q <= !rst_i && out_ready_i;
+    in_stall_q <= !rst_i && in_valid_i && !in_ready_o;
+    in_prev_q <= in_now;
+    if (rst_i) begin
+      in_count_q <= '0;
+      out_count_q <= '0;
+      if (!rst1_q) epoch_q <= epoch_q + 1'b1;  // one step per reset pulse
+    end else begin
+      if (take) in_count_q <= in_count_q + 1'b1;
+      if (give) out_count_q <= out_count_q + 1'b1;
+    end
+    burst_q <= give ? (burst_q == '1 ? burst_q : burst_q + 1'b1) : '0;
+    if (!rst_i && !in_ready_o && out_valid_o && outstanding == FIFO_DEPTH) full_seen_q <= 1'b1;
+  end
+
+  // -------------------------------------------------------------------------
+  // Environment
+  // -------------------------------------------------------------------------
+  always_comb begin
+    if (first_q) assume (rst_i);
+    // The upstream valid/ready rule (what the DUT's a_in_hold checks).
+    if (!rst_i && in_stall_q) assume (in_valid_i && in_now == in_prev_q);
+  end
+
+  // -------------------------------------------------------------------------
+  // Properties
+  // -------------------------------------------------------------------------
+  always_comb begin
+    if (!first_q && !rst_i) begin
+      if (out_valid_o) p_order : assert (out_tag_o == {epoch_q, out_count_q});
+      p_outstanding : assert (outstanding <= FIFO_DEPTH);
+      if (open1_q) p_full_rate : assert (in_ready_o);
+    end
+    if (rst1_q) p_reset_quiet : assert (!in_ready_o && !out_valid_o);
+    if (rst2_q && !rst1_q) p_ready_after : assert (in_ready_o);
+  end
+
+  // -------------------------------------------------------------------------
+  // Cover
+  // -------------------------------------------------------------------------
+  always_comb begin
+    if (!first_q) begin
+      c_fifo_full : cover (!rst_i && !in_ready_o && out_valid_o && outstanding == FIFO_DEPTH);
+      c_reset_while_full : cover (rst_i && !rst1_q && !in_ready_o && !out_ready_i && outstanding == FIFO_DEPTH);
+      c_hit : cover (give && out_hit_o);
+      c_miss : cover (give && !out_hit_o);
+      c_burst : cover (burst_q == (SEQ_BITS + 1)'(FIFO_DEPTH));
+      c_full_then_drained : cover (full_seen_q && !rst_i && in_ready_o && outstanding == '0);
+    end
+  end
+endmodule
+
+`default_nettype wire
