@@ -199,3 +199,82 @@ plan: build
 	$(CLI) plan --scene $(SCENE) --max-extra-work $(MAX_EXTRA_WORK) --widths $(PLAN_WIDTHS) \
 	  --size $(PLAN_SIZE) --out $(PLAN_OUT)
 # ---- end of width study, plan and report ------------------------------------
+
+# ---- Report tables and Embree peer (owner: K-D tree helper) -----------------
+# make tables   the four tables of Mahovsky's 2005 report (box test, child
+#               order, median vs SAH BVH, BVH vs K-D tree), every
+#               configuration one after another on teapot, spheres,
+#               ../shared/scenes/* when present and a synthetic scene of
+#               TABLES_SYNTH triangles; TABLES_SIZE^2 renders, best of
+#               TABLES_REPEAT, one thread. A benchmark, not a test (about
+#               4 minutes on 2 shared cores at the defaults). Results in
+#               out/tables/ (tables.json, tables.md, one PNG a scene).
+#               TABLES_SCENES=a,b,... replaces the scene list.
+# make peer     Embree 3 against our best configurations on the same rays
+#               (installs libembree-dev with apt when missing and run as
+#               root; otherwise says which command to run). Builds
+#               build/peer with -DPLUECKER_PEER=ON; results in out/peer/.
+#               PEER_SIZE^2 render rays + PEER_RANDOM random rays a scene.
+TABLES_SIZE   ?= 512
+TABLES_REPEAT ?= 3
+TABLES_SYNTH  ?= 4000000
+TABLES_SCENES ?=
+PEER_SIZE     ?= 1024
+PEER_RANDOM   ?= 1000000
+PEER_REPEAT   ?= 2
+PEER_SCENES   ?=
+PEER_BUILD    := build/peer
+
+.PHONY: tables peer
+
+tables: build
+	$(BUILD)/pluecker_tables --size $(TABLES_SIZE) --repeat $(TABLES_REPEAT) --synthetic $(TABLES_SYNTH) \
+	  --shared ../shared/scenes --out $(OUT)/tables $(if $(TABLES_SCENES),--scenes $(TABLES_SCENES))
+
+peer: setup
+	@if ! dpkg -s libembree-dev > /dev/null 2>&1; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "peer: installing libembree-dev"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y libembree-dev > build/peer-apt.log 2>&1 \
+	      || { apt-get update > /dev/null 2>&1 && DEBIAN_FRONTEND=noninteractive apt-get install -y libembree-dev \
+	           > build/peer-apt.log 2>&1; } || { cat build/peer-apt.log; exit 1; }; \
+	  else \
+	    echo "peer: Embree 3 is missing; install it with: sudo apt-get install libembree-dev" >&2; exit 1; \
+	  fi; \
+	fi
+	@mkdir -p build
+	@cmake -S model -B $(PEER_BUILD) -DCMAKE_BUILD_TYPE=Release -DPLUECKER_PEER=ON -DPLUECKER_PYTHON=OFF \
+	  > $(PEER_BUILD).configure.log 2>&1 || { cat $(PEER_BUILD).configure.log; exit 1; }
+	@cmake --build $(PEER_BUILD) -j$(JOBS) --target pluecker_peer -- --no-print-directory
+	$(PEER_BUILD)/pluecker_peer --size $(PEER_SIZE) --random $(PEER_RANDOM) --repeat $(PEER_REPEAT) \
+	  --synthetic $(TABLES_SYNTH) --shared ../shared/scenes --out $(OUT)/peer $(if $(PEER_SCENES),--scenes $(PEER_SCENES))
+# ---- end of report tables and Embree peer -----------------------------------
+
+# ---- Reliability: long regression and formal (owner: reliability helper) ----
+# (scripts/regress.sh, fpga/formal/, tb/pluecker_intersector/test_stress.py,
+# model/tests/test_extremes.cpp, model/tests/test_margin_bound.cpp; the short
+# versions of all of them run in `make test`)
+# make sim-regress  the long versions: 1M extreme + 1M transformed queries
+#                   through `fixed` at every width pair of {6,9,..,24}^2 and the
+#                   margin's boundary suites (PLUECKER_LONG=1 model_tests),
+#                   REGRESS_N extreme queries through the Verilated RTL at
+#                   REGRESS_WIDTHS (zero mismatches against the model, zero
+#                   false misses against exact), and the long cocotb stress
+#                   bench. Summary in build/regress/summary.txt.
+# make formal       SymbiYosys (YoWASP) + z3: k-induction proof of the
+#                   handshake and flow-control properties at 6/6, and cover;
+#                   FORMAL_FLAGS=--mutants also checks that four seeded RTL
+#                   bugs are caught. Logs in build/formal/.
+REGRESS_N      ?= 1000000
+REGRESS_WIDTHS ?= 6x6 9x15 16x16 24x24 16x16n
+FORMAL_FLAGS   ?=
+
+.PHONY: sim-regress formal
+
+sim-regress: build
+	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
+	  $(ENV) scripts/regress.sh
+
+formal: setup
+	@$(ENV) fpga/formal/run.sh $(FORMAL_FLAGS)
+# ---- end of reliability --------------------------------------------------------

@@ -95,9 +95,12 @@ def verdict(case, status, err):
     return all(e in err for e in case["expect"])
 
 
-def md_cell(text):
+def md_cell(text, html=True, limit=200):
     text = text.replace("|", "\\|").replace("\n", " ")
-    return text if len(text) <= 200 else text[:197] + "..."
+    text = text if len(text) <= limit else text[:limit - 3] + "..."
+    if html:  # outside code spans, <...> would be read as a tag
+        text = text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
+    return text
 
 
 def main():
@@ -168,7 +171,10 @@ def write_table(out, rows, timeout, mem_gib, cli):
         "known unfixed finding (the note says what goes wrong without the limits; its test",
         "is skipped until the fix lands). Input files are in `model/tests/data/hostile/`.",
         "",
-        "Regenerate: `make build && scripts/venv-exec.sh python scripts/hostile_table.py`.",
+        "Regenerate: `make hostile-table` (builds the CLI, runs every case; about a minute).",
+        "How the cases are found and kept: libFuzzer targets in `model/fuzz/` (`make fuzz`),",
+        "every finding becomes a file here and a case in `cli_cases.txt`; the whole test",
+        "suite also runs under ASan + UBSan (`make test-sanitize`).",
         "",
     ]
     for title, pred in sections:
@@ -182,14 +188,14 @@ def write_table(out, rows, timeout, mem_gib, cli):
             if status is None:
                 first = f"(no answer within {timeout:g} s) " + first
             elif status == 0 and not first:
-                first = "(accepted: rendered)"
+                first = "(accepted: exit 0, nothing on standard error)"
             if ok and not c["open"]:
                 res = "ok"
             elif c["open"]:
                 res = "**open**: " + c["open"]
             else:
                 res = f"**differs** (expected status {c['status']})"
-            lines.append(f"| {c['name']} | {md_cell(input_label(c))} | {st} | {md_cell(first)} | {md_cell(res)} |")
+            lines.append(f"| {c['name']} | {md_cell(input_label(c), html=False)} | {st} | {md_cell(first)} | {md_cell(res, limit=400)} |")
         lines.append("")
     Path(out).parent.mkdir(parents=True, exist_ok=True)
     Path(out).write_text("\n".join(lines))

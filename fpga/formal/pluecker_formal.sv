@@ -23,12 +23,13 @@
 //                   delivered
 //   p_reset_quiet   in_ready_o and out_valid_o are low from the second reset
 //                   cycle on and in the first cycle after it
-//   p_ready_after   in_ready_o is high two cycles after the reset is released
+//   p_ready_after   in_ready_o is high in the second cycle with rst_i low
+//                   after a reset (it rises one cycle after the release)
 //   p_full_rate     in_ready_o is high whenever the previous cycle was not a
 //                   reset and had out_ready_i high: an unblocked output never
 //                   blocks the input (one query per clock)
-// and covers the FIFO full, a reset while it is full and stalled, a hit, and
-// FIFO_DEPTH results back to back.
+// and covers the FIFO full, a reset while it is full and stalled, a hit, a
+// miss, FIFO_DEPTH results back to back, and a full FIFO drained.
 //
 // Widths: the datapath does not take part in any handshake, so the proof runs
 // at the smallest widths (6/6). The FIFO depth and the pipeline length do not
@@ -124,8 +125,29 @@ module pluecker_formal #(
       if (give) out_count_q <= out_count_q + 1'b1;
     end
     burst_q <= give ? (burst_q == '1 ? burst_q : burst_q + 1'b1) : '0;
-    if (!rst_i && !in_ready_o && out_valid_o && outstanding == FIFO_DEPTH) full_seen_q <= 1'b1;
+    if (rst_i) full_seen_q <= 1'b0;
+    else if (!in_ready_o && out_valid_o && outstanding == FIFO_DEPTH) full_seen_q <= 1'b1;
   end
+
+  // -------------------------------------------------------------------------
+  // Probes of DUT state, for the lemmas below. Undriven here: the .sby script
+  // connects them to the flattened DUT's flops (`connect -set`), since Yosys
+  // does not resolve hierarchical references.
+  // -------------------------------------------------------------------------
+  localparam int PW = 4;  // the DUT's FIFO pointer width, $clog2(FIFO_DEPTH) + 1
+  wire probe_v0, probe_v1, probe_v2, probe_v3, probe_v4;
+  wire [PW-1:0] probe_wr, probe_rd;
+  wire [TAG_BITS-1:0] probe_tag0, probe_tag1, probe_tag2, probe_tag3, probe_tag4;
+  wire [TAG_BITS:0] probe_fifo[FIFO_DEPTH];  // {tag, hit}
+  wire [PW-1:0] fifo_count = probe_wr - probe_rd;
+  wire [PW-1:0] in_flight = PW'(probe_v0) + PW'(probe_v1) + PW'(probe_v2) + PW'(probe_v3) + PW'(probe_v4);
+  // Query numbers of the pipeline stages: the FIFO holds out_count ..
+  // out_count + fifo_count - 1, then the stages from S4 back to S0.
+  wire [SEQ_BITS-1:0] seq4 = out_count_q + SEQ_BITS'(fifo_count);
+  wire [SEQ_BITS-1:0] seq3 = seq4 + SEQ_BITS'(probe_v4);
+  wire [SEQ_BITS-1:0] seq2 = seq3 + SEQ_BITS'(probe_v3);
+  wire [SEQ_BITS-1:0] seq1 = seq2 + SEQ_BITS'(probe_v2);
+  wire [SEQ_BITS-1:0] seq0 = seq1 + SEQ_BITS'(probe_v1);
 
   // -------------------------------------------------------------------------
   // Environment
@@ -147,6 +169,29 @@ module pluecker_formal #(
     end
     if (rst1_q) p_reset_quiet : assert (!in_ready_o && !out_valid_o);
     if (rst2_q && !rst1_q) p_ready_after : assert (in_ready_o);
+  end
+
+  // -------------------------------------------------------------------------
+  // Lemmas (proved like the properties; they make the properties inductive):
+  // every query in flight sits in the stage or FIFO slot its number says.
+  // -------------------------------------------------------------------------
+  always_comb begin
+    if (!first_q) begin
+      l_in_flight : assert (SEQ_BITS'(in_flight) + SEQ_BITS'(fifo_count) == outstanding);
+      if (probe_v4) l_tag4 : assert (probe_tag4 == {epoch_q, seq4});
+      if (probe_v3) l_tag3 : assert (probe_tag3 == {epoch_q, seq3});
+      if (probe_v2) l_tag2 : assert (probe_tag2 == {epoch_q, seq2});
+      if (probe_v1) l_tag1 : assert (probe_tag1 == {epoch_q, seq1});
+      if (probe_v0) l_tag0 : assert (probe_tag0 == {epoch_q, seq0});
+    end
+  end
+  for (genvar k = 0; k < FIFO_DEPTH; k++) begin : g_slot
+    // l_slot (unlabelled: Yosys does not prefix labels inside generate blocks)
+    wire [PW-2:0] idx = (PW - 1)'(k) - probe_rd[PW-2:0];  // position behind the head
+    always_comb begin
+      if (!first_q && PW'(idx) < fifo_count)
+        assert (probe_fifo[k][TAG_BITS:1] == {epoch_q, out_count_q + SEQ_BITS'(idx)});
+    end
   end
 
   // -------------------------------------------------------------------------

@@ -21,19 +21,31 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 namespace pluecker::fuzz {
 
-inline std::string temp_path(const char* ext) {
+// The private directory, made on first use and removed at exit.
+inline const std::string& temp_dir() {
     static const std::string dir = [] {
         char templ[] = "/tmp/pluecker_fuzz_XXXXXX";
         const char* d = ::mkdtemp(templ);
         if (!d) std::abort();
         return std::string(d);
     }();
-    return dir + "/input" + ext;
+    static const bool cleanup = [] {
+        std::atexit([] {
+            std::error_code ec;
+            std::filesystem::remove_all(temp_dir(), ec);
+        });
+        return true;
+    }();
+    (void)cleanup;
+    return dir;
 }
+
+inline std::string temp_path(const char* ext) { return temp_dir() + "/input" + ext; }
 
 inline void write_file(const std::string& path, const std::uint8_t* data, std::size_t size) {
     std::FILE* f = std::fopen(path.c_str(), "wb");

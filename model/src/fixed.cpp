@@ -88,8 +88,11 @@ i64 scaled_direction(float x, float m, int dir_bits) {
     if (sh >= 0) {
         num = mx << sh;  // mx < 2^24, sh <= 47: fits
     } else {
-        if (-sh > 40) return 0;  // value < 2^(24 - 23 - 40): rounds to 0
-        den = mm << (-sh);       // mm < 2^24: fits
+        // mx / mm < 2, so value < 2^(sh + 1) <= 1/2 for sh <= -2: rounds to 0.
+        // (Shifting mm by up to 40 overflowed 64 bits; see
+        // Extremes.TinyDirectionRatiosRoundToZero.)
+        if (sh <= -2) return 0;
+        den = mm << 1;  // sh == -1; mm < 2^24: fits
     }
     i64 q = num / den;
     const i64 rem = num - q * den;

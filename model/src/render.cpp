@@ -351,9 +351,14 @@ Image render(const RenderScene& scene, const RenderOptions& opts, RenderStats& s
 Image render_direct(const RenderScene& scene, const RenderOptions& opts, RenderStats& st) {
     check_options(opts);
     check_quantized(scene, opts);
+    const auto tracer = make_tracer(scene.accel, opts.test, opts.order);
+    return render_direct(scene, opts, *tracer, st);
+}
+
+Image render_direct(const RenderScene& scene, const RenderOptions& opts, const Tracer& tracer, RenderStats& st) {
+    check_options(opts);
     const auto t0 = std::chrono::steady_clock::now();
     const Shader sh(scene, opts);
-    const auto tracer = make_tracer(scene.accel, opts.test, opts.order);
     Image img(opts.width, opts.height);
     const int nthreads = std::min(opts.threads, opts.height);
     std::vector<RenderStats> part(static_cast<std::size_t>(nthreads));
@@ -366,7 +371,7 @@ Image render_direct(const RenderScene& scene, const RenderOptions& opts, RenderS
         for (;;) {
             const int y = next_row.fetch_add(1);
             if (y >= opts.height) break;
-            for (int x = 0; x < opts.width; ++x) img.set(x, y, render_pixel(sh, *tracer, x, y, tree, part[id]));
+            for (int x = 0; x < opts.width; ++x) img.set(x, y, render_pixel(sh, tracer, x, y, tree, part[id]));
             const int done = rows_done.fetch_add(1) + 1;
             if (id == 0) progress.update(static_cast<std::uint64_t>(done));
         }

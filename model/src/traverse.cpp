@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
 #include "pluecker/traverse.hpp"
 
+#include <sys/mman.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <new>
+#include <utility>
 #include <stdexcept>
 
 namespace pluecker {
@@ -61,24 +65,83 @@ std::string config_name(BoxTestKind t, ChildOrder o) {
 // ---------------------------------------------------------------------------
 // Accel
 
+namespace {
+
+// Raw storage for n records of T, 64-byte aligned; from 2 MiB on, 2 MiB
+// aligned and advised for transparent huge pages (a BVH of a million
+// triangles spans tens of MiB: with 4 KiB pages nearly every node an
+// incoherent ray reaches is a TLB miss too).
+template <class T>
+T* alloc_records(std::size_t n) {
+    constexpr std::size_t kHuge = std::size_t{2} << 20;
+    std::size_t bytes = std::max<std::size_t>(n, 1) * sizeof(T);
+    const std::size_t align = bytes >= kHuge ? kHuge : 64;
+    bytes = (bytes + align - 1) / align * align;
+    void* p = std::aligned_alloc(align, bytes);
+    if (!p) throw std::bad_alloc();
+#if defined(MADV_HUGEPAGE)
+    if (align == kHuge && !std::getenv("NOHUGE")) madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
+#endif
+    return static_cast<T*>(p);
+}
+
+}  // namespace
+
 Accel::Accel(const Mesh& mesh, const Bvh& bvh) {
     if (bvh.nodes.empty()) throw InputError("traversal: empty BVH");
     // Sibling pairs start at odd indices (1, 3, ...): with node i at slot
     // i + 1 of a 64-byte aligned store, every pair fills one cache line.
     static_assert(sizeof(BvhNode) == 32);
-    const std::size_t bytes = ((bvh.nodes.size() + 1) * sizeof(BvhNode) + 63) / 64 * 64;
-    node_store.reset(static_cast<BvhNode*>(std::aligned_alloc(64, bytes)));
-    if (!node_store) throw std::bad_alloc();
-    std::memcpy(static_cast<void*>(node_store.get() + 1), bvh.nodes.data(), bvh.nodes.size() * sizeof(BvhNode));
-    nodes = std::span<const BvhNode>(node_store.get() + 1, bvh.nodes.size());
+    const std::size_t nn = bvh.nodes.size();
+    node_store.reset(alloc_records<BvhNode>(nn + 1));
+    std::memcpy(static_cast<void*>(node_store.get() + 1), bvh.nodes.data(), nn * sizeof(BvhNode));
+    nodes = std::span<const BvhNode>(node_store.get() + 1, nn);
     depth = bvh.depth();
-    tris.resize(bvh.tri_order.size());
-    for (std::size_t i = 0; i < tris.size(); ++i) {
+
+    const std::size_t nt = bvh.tri_order.size();
+    tri_store.reset(alloc_records<LeafTri>(nt));
+    for (std::size_t i = 0; i < nt; ++i) {
         const std::uint32_t id = bvh.tri_order[i];
         if (id >= mesh.triangles.size()) throw InputError("traversal: BVH names triangle " + std::to_string(id));
         const auto& t = mesh.triangles[id];
-        tris[i] = LeafTri{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], id};
+        std::construct_at(tri_store.get() + i,
+                          LeafTri{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], id});
     }
+    tris = std::span<const LeafTri>(tri_store.get(), nt);
+
+    // Pair layout: one pair per interior node, numbered in the order of the
+    // children's index in `nodes` (the builder's order).
+    std::vector<std::pair<std::int32_t, std::uint32_t>> by_first;  // (first child, node)
+    for (std::size_t i = 0; i < nn; ++i)
+        if (!bvh.nodes[i].is_leaf()) {
+            const std::int32_t f = bvh.nodes[i].first;
+            if (f < 0 || static_cast<std::size_t>(f) + 1 >= nn)
+                throw InputError("traversal: BVH node " + std::to_string(i) + " names children " + std::to_string(f));
+            by_first.emplace_back(f, static_cast<std::uint32_t>(i));
+        }
+    std::sort(by_first.begin(), by_first.end());
+    std::vector<std::int32_t> pair_of(nn, -1);  // interior node -> pair of its children
+    for (std::size_t k = 0; k < by_first.size(); ++k) pair_of[by_first[k].second] = static_cast<std::int32_t>(k);
+    auto ref = [&](std::size_t i) {
+        const BvhNode& n = bvh.nodes[i];
+        return n.is_leaf() ? ChildRef{n.first, n.count} : ChildRef{pair_of[i], n.count};
+    };
+    pair_store.reset(alloc_records<NodePair>(by_first.size()));
+    for (std::size_t k = 0; k < by_first.size(); ++k) {
+        NodePair p;
+        const auto f = static_cast<std::size_t>(by_first[k].first);
+        for (int c = 0; c < 2; ++c) {
+            const Box& b = bvh.nodes[f + static_cast<std::size_t>(c)].box;
+            for (int a = 0; a < 3; ++a) {
+                p.box[a][c] = b.lo[a];
+                p.box[a][c + 2] = b.hi[a];
+            }
+            p.child[c] = ref(f + static_cast<std::size_t>(c));
+        }
+        std::construct_at(pair_store.get() + k, p);
+    }
+    pairs = std::span<const NodePair>(pair_store.get(), by_first.size());
+    root = ref(0);
 }
 
 void Accel::quantize(const FixedFormat& f) {

@@ -120,6 +120,11 @@ Image render(const RenderScene& scene, const RenderOptions& opts, RenderStats& s
 // Every ray traced at once by the Tracer of opts.test/opts.order, pixels
 // spread over opts.threads threads (any test, the fixed one included).
 Image render_direct(const RenderScene& scene, const RenderOptions& opts, RenderStats& st);
+// The same render with a caller's tracer in place of the one made from
+// scene.accel and opts.test/opts.order (e.g. a K-D tree's, kdtree.hpp): same
+// camera, lights, ray trees and shading; opts.test/opts.order only label the
+// render. The tracer is called from opts.threads threads at once.
+Image render_direct(const RenderScene& scene, const RenderOptions& opts, const Tracer& tracer, RenderStats& st);
 
 // The hardware-in-the-loop path: rays of all pixels go through run_batched
 // with opts.pool rays in flight; every box test is answered by `engine`.

@@ -40,10 +40,13 @@
 #include "pluecker/geometry.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/triangle.hpp"
+#include "pluecker/vec4.hpp"
 
 #include <glm/common.hpp>
 
+
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -107,21 +110,53 @@ struct TraversalStats {
 inline constexpr int kMaxStack = 256;
 
 // ---------------------------------------------------------------------------
+// The layout of the float traversal kernels (smits and pluecker): the two
+// children of an interior node in one 64-byte record, their boxes as one
+// 4-lane vector per axis, so that both boxes are tested at once.
+
+// A child as the kernels see it: a leaf (count > 0: triangles tris[first,
+// first + count)) or an interior node (count <= 0, split axis -count, its
+// children in pairs[first]).
+struct ChildRef {
+    std::int32_t first;
+    std::int32_t count;
+    bool is_leaf() const { return count > 0; }
+    int axis() const { return -count; }
+};
+
+struct alignas(64) NodePair {
+    // box[a] = {lo of child 0, lo of child 1, hi of child 0, hi of child 1}
+    // on axis a.
+    float box[3][4];
+    ChildRef child[2];
+};
+static_assert(sizeof(NodePair) == 64);
+
+// ---------------------------------------------------------------------------
 // What a traversal reads: the BVH nodes, the triangles copied in leaf order
 // (tris[i] is triangle bvh.tri_order[i]) and, for the fixed-point path, the
 // node boxes quantised once.
 struct Accel {
     // Copies the nodes (same indices) so that every sibling pair
-    // (first, first + 1) shares one 64-byte cache line.
+    // (first, first + 1) shares one 64-byte cache line, and builds the pair
+    // layout of the same tree. Large arrays are 2 MiB aligned and asked for
+    // transparent huge pages (fewer TLB misses on incoherent rays).
     Accel(const Mesh& mesh, const Bvh& bvh);
 
     std::span<const BvhNode> nodes;
     int depth = 1;  // levels of the BVH
-    std::vector<LeafTri> tris;
+    std::span<const LeafTri> tris;
+    // The same tree for the float kernels: root = nodes[0] as a ChildRef
+    // (an interior root names its children's pair); pairs in the order of
+    // the children's indices in `nodes`.
+    ChildRef root{};
+    std::span<const NodePair> pairs;
     struct FreeDeleter {
-        void operator()(BvhNode* p) const { std::free(p); }
+        void operator()(void* p) const { std::free(p); }
     };
     std::unique_ptr<BvhNode[], FreeDeleter> node_store;  // 64-byte aligned; nodes[i] = node_store[i + 1]
+    std::unique_ptr<NodePair[], FreeDeleter> pair_store;
+    std::unique_ptr<LeafTri[], FreeDeleter> tri_store;
 
     // Quantises every node box (fixed_quantize_box) for format f.
     void quantize(const FixedFormat& f);
@@ -202,42 +237,162 @@ template <RayClass C>
     return !miss;
 }
 
+// Both children of a NodePair at once: the same float operations, per
+// lane, as fast_smits_hit and fast_pluecker_hit on each child's box, so the
+// same answers (and entry distances). Lanes of a 4-vector (GCC/Clang vector
+// extensions; SSE on x86-64) hold {child 0, child 1} twice: for the box
+// coordinates {lo, lo, hi, hi}. Bit c of the result is set when child c is
+// hit. test_traverse_pairs.cpp checks them against the one-box kernels.
+
+struct SmitsPairRay {
+    Float4 o[3];    // o_a in every lane
+    Float4 inv[3];  // {1/d_a, 1/d_a, -1/d_a, -1/d_a}
+    Float4 init;    // {0, 0, -tmax, -tmax}
+};
+
+inline SmitsPairRay smits_pair_setup(const FastSmitsRay& r) {
+    SmitsPairRay p;
+    for (int a = 0; a < 3; ++a) {
+        const float i = at(r.inv, a);
+        p.o[a] = splat4(at(r.o, a));
+        p.inv[a] = Float4{i, i, -i, -i};
+    }
+    p.init = Float4{0.0f, 0.0f, -r.tmax, -r.tmax};
+    return p;
+}
+
+// Lanes 0, 1 accumulate the entry distance t0 of each child, lanes 2, 3 the
+// negated exit distance -t1: (far - o) * -inv is exactly -((far - o) * inv),
+// and -ex > -t1 exactly when ex < t1, so one max keeps both (a NaN lane
+// keeps the old value, as in fast_smits_hit).
+template <RayClass C>
+[[gnu::always_inline]] inline unsigned fast_smits_pair(const SmitsPairRay& r, const NodePair& p, Float4& tnear) {
+    constexpr bool n[3] = {(C & 1) != 0, (C & 2) != 0, (C & 4) != 0};
+    Float4 acc = r.init;
+    for (int a = 0; a < 3; ++a) {
+        const Float4 b = load4(p.box[a]);
+        const Float4 v = ((n[a] ? swap_halves(b) : b) - r.o[a]) * r.inv[a];  // {en, en, -ex, -ex}
+        acc = v > acc ? v : acc;
+    }
+    tnear = acc;  // lanes 0, 1
+    return lane_bits(acc <= -swap_halves(acc)) & 3u;
+}
+
+struct PlueckerPairRay {
+    Float4 o[3];   // o_a in every lane
+    Float4 e[3];   // segment end e_a in every lane
+    Float4 dv[3];  // cross tests (i, j) = (0,1), (0,2), (1,2): {D_i, D_i, D_j, D_j}
+    Float4 du[3];  //                                          {D_j, D_j, D_i, D_i}
+    bool has_end;
+};
+
+inline PlueckerPairRay pluecker_pair_setup(const FastPlueckerRay& r) {
+    PlueckerPairRay p;
+    for (int a = 0; a < 3; ++a) {
+        p.o[a] = splat4(at(r.o, a));
+        p.e[a] = splat4(at(r.e, a));
+    }
+    constexpr int ij[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+    for (int k = 0; k < 3; ++k) {
+        const float di = at(r.d, ij[k][0]), dj = at(r.d, ij[k][1]);
+        p.dv[k] = Float4{di, di, dj, dj};
+        p.du[k] = Float4{dj, dj, di, di};
+    }
+    p.has_end = r.has_end;
+    return p;
+}
+
+// W[a] = {A_a, A_a, B_a, B_a} (children 0, 1). Lanes 0, 1 of the result:
+// B_j*D_i - A_i*D_j < 0; lanes 2, 3: B_i*D_j - A_j*D_i < 0.
+template <int I, int J>
+[[gnu::always_inline]] inline Int4 pluecker_cross_miss(const Float4* W, Float4 dv, Float4 du) {
+    const Float4 b = __builtin_shufflevector(W[J], W[I], 2, 3, 6, 7);  // {B_j, B_j, B_i, B_i}
+    const Float4 a = __builtin_shufflevector(W[I], W[J], 0, 1, 4, 5);  // {A_i, A_i, A_j, A_j}
+    return b * dv - a * du < Float4{};
+}
+
+template <RayClass C>
+[[gnu::always_inline]] inline unsigned fast_pluecker_pair(const PlueckerPairRay& r, const NodePair& p) {
+    constexpr bool n[3] = {(C & 1) != 0, (C & 2) != 0, (C & 4) != 0};
+    const Float4 zero{};
+    Float4 bx[3], W[3];
+    for (int a = 0; a < 3; ++a) {
+        bx[a] = load4(p.box[a]);
+        W[a] = n[a] ? swap_halves(r.o[a] - bx[a]) : bx[a] - r.o[a];
+    }
+    // Origin test (lanes 2, 3: B < 0), then the six silhouette tests.
+    Int4 miss = ((W[0] < zero) | (W[1] < zero) | (W[2] < zero)) & Int4{0, 0, -1, -1};
+    miss |= pluecker_cross_miss<0, 1>(W, r.dv[0], r.du[0]);
+    miss |= pluecker_cross_miss<0, 2>(W, r.dv[1], r.du[1]);
+    miss |= pluecker_cross_miss<1, 2>(W, r.dv[2], r.du[2]);
+    if (r.has_end) {  // lanes 0, 1: e - lo (positive axis) or hi - e (negative)
+        Int4 end{};
+        for (int a = 0; a < 3; ++a) end |= (n[a] ? swap_halves(bx[a] - r.e[a]) : r.e[a] - bx[a]) < zero;
+        miss |= end & Int4{-1, -1, 0, 0};
+    }
+    const unsigned bits = lane_bits(miss);
+    return ~(bits | bits >> 2) & 3u;
+}
+
 // A policy's hit<C>(state, node, box, tnear) may use the class C of the ray
 // (the traversal passes the class of the ray it set up).
+// A policy with kPairs also answers hit2<C>(state, pair, tnear): the bits
+// of the children of a NodePair it hits (traverse_pairs); with kDistance
+// their entry distances in lanes 0, 1 of tnear.
 struct SmitsPolicy {
     static constexpr bool kDistance = true;
+    static constexpr bool kPairs = true;
     struct State {
         FastSmitsRay s;
         Ray ray;
+        SmitsPairRay pr;
     };
-    State setup(const Ray& r) const { return {fast_smits_setup(r), r}; }
+    State setup(const Ray& r) const {
+        const FastSmitsRay s = fast_smits_setup(r);
+        return {s, r, smits_pair_setup(s)};
+    }
     bool live(const State&) const { return true; }
     void shrink(State& st, float t) const {
         st.s.tmax = t;
         st.ray.tmax = t;
+        st.pr.init = Float4{0.0f, 0.0f, -t, -t};
     }
     template <RayClass C>
     [[gnu::always_inline]] bool hit(const State& st, std::uint32_t, const Box& b, float* tnear) const {
         return fast_smits_hit<C>(st.s, b, tnear);
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] unsigned hit2(const State& st, const NodePair& p, Float4& tnear) const {
+        return fast_smits_pair<C>(st.pr, p, tnear);
     }
     Ray query_ray(const State& st) const { return st.ray; }
 };
 
 struct PlueckerPolicy {
     static constexpr bool kDistance = false;
+    static constexpr bool kPairs = true;
     struct State {
         FastPlueckerRay p;
         Ray ray;
+        PlueckerPairRay pr;
     };
-    State setup(const Ray& r) const { return {fast_pluecker_setup(r), r}; }
+    State setup(const Ray& r) const {
+        const FastPlueckerRay p = fast_pluecker_setup(r);
+        return {p, r, pluecker_pair_setup(p)};
+    }
     bool live(const State&) const { return true; }
     void shrink(State& st, float t) const {
         st.ray.tmax = t;
         st.p = fast_pluecker_setup(st.ray);
+        st.pr = pluecker_pair_setup(st.p);
     }
     template <RayClass C>
     [[gnu::always_inline]] bool hit(const State& st, std::uint32_t, const Box& b, float*) const {
         return fast_pluecker_hit<C>(st.p, b);
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] unsigned hit2(const State& st, const NodePair& p, Float4&) const {
+        return fast_pluecker_pair<C>(st.pr, p);
     }
     Ray query_ray(const State& st) const { return st.ray; }
 };
@@ -397,19 +552,169 @@ done:
     return best.found() ? best : Hit{};
 }
 
+// The same traversal over Accel::pairs for a policy with kPairs: both
+// children of a node tested by one hit2 call. Visits the same nodes in the
+// same order, counts the same and returns the same hit as traverse_class.
+[[gnu::always_inline]] inline void prefetch_child(const Accel& a, ChildRef c) {
+    if (c.is_leaf()) {
+        const char* p = reinterpret_cast<const char*>(a.tris.data() + c.first);
+        __builtin_prefetch(p);
+        __builtin_prefetch(p + c.count * sizeof(LeafTri) - 1);
+    } else {
+        __builtin_prefetch(a.pairs.data() + c.first);
+    }
+}
+
+// The triangles tris[0, count) of one leaf, in order, with the test
+// specialised for the ray's shear axes (tri_intersect_packed). Returns true
+// when an any-hit search may stop; `tested` counts the triangles tested.
+// One out-of-line copy per (KZ, SWAP): the traversal picks it once per ray
+// (leaf_fn) and calls it through a pointer, which predicts well.
+template <int KZ, bool SWAP, bool AnyHit>
+[[gnu::noinline]] bool leaf_hits(const TriRay& tr, const LeafTri* t, std::int32_t count, Hit& best,
+                                 std::uint64_t& tested) {
+    const LeafTri* end = t + count;
+    for (; t != end; ++t) {
+        float th, b1, b2;
+        if (tri_intersect_packed<KZ, SWAP>(tr, *t, best.t, th, b1, b2) && closer(th, t->id, best)) {
+            best = Hit{th, b1, b2, t->id};
+            if constexpr (AnyHit) {
+                tested += static_cast<std::uint64_t>(t - end + count + 1);
+                return true;
+            }
+        }
+    }
+    tested += static_cast<std::uint64_t>(count);
+    return false;
+}
+
+template <bool AnyHit>
+using LeafFn = bool (*)(const TriRay&, const LeafTri*, std::int32_t, Hit&, std::uint64_t&);
+
+template <bool AnyHit>
+LeafFn<AnyHit> leaf_fn(const TriRay& tr) {
+    static constexpr LeafFn<AnyHit> kFns[3][2] = {
+        {leaf_hits<0, false, AnyHit>, leaf_hits<0, true, AnyHit>},
+        {leaf_hits<1, false, AnyHit>, leaf_hits<1, true, AnyHit>},
+        {leaf_hits<2, false, AnyHit>, leaf_hits<2, true, AnyHit>},
+    };
+    return kFns[tr.kz][tr.kx != (tr.kz + 1) % 3 ? 1 : 0];
+}
+
+template <class Policy>
+inline constexpr bool kHasPairs = requires { requires Policy::kPairs; };
+
+template <class Policy, ChildOrder Order, bool AnyHit, RayClass C>
+Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, TraversalStats& st) {
+    static_assert(Order != ChildOrder::Dist || Policy::kDistance, "dist order needs the entry distance");
+    struct Entry {
+        std::int32_t first, count;
+        float tnear;
+    };
+    auto s = test.setup(ray);
+    const NodePair* pairs = a.pairs.data();
+    const LeafTri* tris = a.tris.data();
+    const TriRay tr = tri_setup(ray);
+    const LeafFn<AnyHit> leaf = leaf_fn<AnyHit>(tr);
+    Hit best;
+    best.t = ray.tmax;
+    Entry local[kMaxStack];
+    Entry* stack = local;
+    if (a.depth > kMaxStack) [[unlikely]] {
+        thread_local std::vector<Entry> deep;
+        if (deep.size() < static_cast<std::size_t>(a.depth)) deep.resize(static_cast<std::size_t>(a.depth));
+        stack = deep.data();
+    }
+    int sp = 0;
+    std::uint64_t visits = 0, boxes = 1, tri_tests = 0;
+    ChildRef cur = a.root;
+    {
+        float t0;
+        if (!test.template hit<C>(s, 0, a.nodes[0].box, &t0)) goto done;
+    }
+    for (;;) {
+        ++visits;
+        if (cur.is_leaf()) {
+            const float before = best.t;
+            if (leaf(tr, tris + cur.first, cur.count, best, tri_tests)) goto done;
+            if (best.t < before) test.shrink(s, best.t);
+        } else {
+            const NodePair& p = pairs[cur.first];
+            boxes += 2;
+            // The children's data (their pair or their triangles) is fetched
+            // while the boxes are tested.
+            prefetch_child(a, p.child[0]);
+            prefetch_child(a, p.child[1]);
+            Float4 tn;
+            const unsigned hit = test.template hit2<C>(s, p, tn);
+            // Branches, not a computed index: the next node's address is
+            // then predicted, and its loads start before the test ends.
+            if (hit == 3u) {
+                bool swap;
+                if constexpr (Order == ChildOrder::Fixed)
+                    swap = false;
+                else if constexpr (Order == ChildOrder::Dsa)
+                    swap = dsa_first_child(C, cur.axis()) != 0;
+                else
+                    swap = tn[1] < tn[0];
+                constexpr bool kDist = Order == ChildOrder::Dist;
+                if (swap) {
+                    stack[sp++] = Entry{p.child[0].first, p.child[0].count, kDist ? tn[0] : 0.0f};
+                    cur = p.child[1];
+                } else {
+                    stack[sp++] = Entry{p.child[1].first, p.child[1].count, kDist ? tn[1] : 0.0f};
+                    cur = p.child[0];
+                }
+                continue;
+            }
+            if (hit == 1u) {
+                cur = p.child[0];
+                continue;
+            }
+            if (hit == 2u) {
+                cur = p.child[1];
+                continue;
+            }
+        }
+        for (;;) {
+            if (sp == 0) goto done;
+            --sp;
+            if constexpr (Order == ChildOrder::Dist) {
+                if (stack[sp].tnear > best.t) continue;
+            }
+            cur = ChildRef{stack[sp].first, stack[sp].count};
+            break;
+        }
+    }
+done:
+    st.node_visits += visits;
+    st.box_tests += boxes;
+    st.tri_tests += tri_tests;
+    return best.found() ? best : Hit{};
+}
+
 // The traversal. Returns the closest hit (AnyHit = false) or the first hit
-// found (AnyHit = true) with 0 <= t <= ray.tmax; Hit{} when none.
+// found (AnyHit = true) with 0 <= t <= ray.tmax; Hit{} when none. Policies
+// with kPairs take traverse_pairs, the others traverse_class.
+template <class Policy, ChildOrder Order, bool AnyHit, RayClass C>
+Hit traverse_any(const Accel& a, const Policy& test, const Ray& ray, TraversalStats& st) {
+    if constexpr (kHasPairs<Policy>)
+        return traverse_pairs<Policy, Order, AnyHit, C>(a, test, ray, st);
+    else
+        return traverse_class<Policy, Order, AnyHit, C>(a, test, ray, st);
+}
+
 template <class Policy, ChildOrder Order, bool AnyHit>
 Hit traverse(const Accel& a, const Policy& test, const Ray& ray, TraversalStats& st) {
     switch (ray_class(ray.d)) {
-        case 0: return traverse_class<Policy, Order, AnyHit, 0>(a, test, ray, st);
-        case 1: return traverse_class<Policy, Order, AnyHit, 1>(a, test, ray, st);
-        case 2: return traverse_class<Policy, Order, AnyHit, 2>(a, test, ray, st);
-        case 3: return traverse_class<Policy, Order, AnyHit, 3>(a, test, ray, st);
-        case 4: return traverse_class<Policy, Order, AnyHit, 4>(a, test, ray, st);
-        case 5: return traverse_class<Policy, Order, AnyHit, 5>(a, test, ray, st);
-        case 6: return traverse_class<Policy, Order, AnyHit, 6>(a, test, ray, st);
-        default: return traverse_class<Policy, Order, AnyHit, 7>(a, test, ray, st);
+        case 0: return traverse_any<Policy, Order, AnyHit, 0>(a, test, ray, st);
+        case 1: return traverse_any<Policy, Order, AnyHit, 1>(a, test, ray, st);
+        case 2: return traverse_any<Policy, Order, AnyHit, 2>(a, test, ray, st);
+        case 3: return traverse_any<Policy, Order, AnyHit, 3>(a, test, ray, st);
+        case 4: return traverse_any<Policy, Order, AnyHit, 4>(a, test, ray, st);
+        case 5: return traverse_any<Policy, Order, AnyHit, 5>(a, test, ray, st);
+        case 6: return traverse_any<Policy, Order, AnyHit, 6>(a, test, ray, st);
+        default: return traverse_any<Policy, Order, AnyHit, 7>(a, test, ray, st);
     }
 }
 

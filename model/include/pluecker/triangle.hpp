@@ -19,6 +19,7 @@
 #pragma once
 
 #include "pluecker/geometry.hpp"
+#include "pluecker/vec4.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -118,5 +119,57 @@ struct LeafTri {
     Vec3 v0, v1, v2;
     std::uint32_t id;
 };
+static_assert(sizeof(LeafTri) == 40);
+
+// tri_intersect on a LeafTri, for a ray whose tri_setup chose kz = KZ and
+// swapped kx, ky iff SWAP, with the three vertices in the lanes of 4-vectors:
+// the same float operations per vertex and edge function as tri_intersect
+// (each lane one of its scalar expressions), so the same result.
+template <int KZ, bool SWAP>
+[[gnu::always_inline]] inline bool tri_intersect_packed(const TriRay& r, const LeafTri& tri, float tmax, float& t,
+                                                        float& b1, float& b2) {
+    constexpr int kx0 = (KZ + 1) % 3, ky0 = (kx0 + 1) % 3;
+    constexpr int KX = SWAP ? ky0 : kx0, KY = SWAP ? kx0 : ky0;
+    // Rows {v0, v1, v2} of each axis; lane 3 repeats v2 (never the id).
+    const Float4 p0 = load4(&tri.v0.x), p1 = load4(&tri.v1.x), p2 = load4(&tri.v2.x);
+    const Float4 lo = __builtin_shufflevector(p0, p1, 0, 4, 1, 5);  // x0 x1 y0 y1
+    const Float4 hi = __builtin_shufflevector(p0, p1, 2, 6, 2, 6);  // z0 z1 z0 z1
+    const Float4 row[3] = {__builtin_shufflevector(lo, p2, 0, 1, 4, 4),
+                           __builtin_shufflevector(lo, p2, 2, 3, 5, 5),
+                           __builtin_shufflevector(hi, p2, 0, 1, 6, 6)};
+    // Translated: lanes {a, b, c} of tri_intersect per axis.
+    const Float4 X = row[KX] - splat4(r.o[KX]);
+    const Float4 Y = row[KY] - splat4(r.o[KY]);
+    const Float4 Z = row[KZ] - splat4(r.o[KZ]);
+    const Float4 sx = X - splat4(r.sx) * Z;  // {ax, bx, cx}
+    const Float4 sy = Y - splat4(r.sy) * Z;  // {ay, by, cy}
+    // {u, v, w} = {cx*by - cy*bx, ax*cy - ay*cx, bx*ay - by*ax}
+    const Float4 x2 = __builtin_shufflevector(sx, sx, 2, 0, 1, 3), y1 = __builtin_shufflevector(sy, sy, 1, 2, 0, 3);
+    const Float4 y2 = __builtin_shufflevector(sy, sy, 2, 0, 1, 3), x1 = __builtin_shufflevector(sx, sx, 1, 2, 0, 3);
+    Float4 uvw = x2 * y1 - y2 * x1;
+    const Float4 zero{};
+    if (lane_bits(uvw == zero) & 7u) [[unlikely]] {
+        // The products of floats are exact in double, so the signs are exact.
+        const double ax = sx[0], bx = sx[1], cx = sx[2], ay = sy[0], by = sy[1], cy = sy[2];
+        uvw = Float4{static_cast<float>(cx * by - cy * bx), static_cast<float>(ax * cy - ay * cx),
+                     static_cast<float>(bx * ay - by * ax), 0.0f};
+    }
+    const unsigned neg = lane_bits(uvw < zero) & 7u, pos = lane_bits(uvw > zero) & 7u;
+    if (neg && pos) return false;
+    const float u = uvw[0], v = uvw[1], w = uvw[2];
+    const float det = u + v + w;
+    if (det == 0.0f) return false;
+    const Float4 p = uvw * (splat4(r.sz) * Z);  // {u*az, v*bz, w*cz}
+    const float tt = p[0] + p[1] + p[2];
+    // t >= 0 iff tt and det share a sign.
+    if ((det < 0.0f && tt > 0.0f) || (det > 0.0f && tt < 0.0f)) return false;
+    const float rcp = 1.0f / det;
+    const float th = tt * rcp;
+    if (!(th <= tmax)) return false;
+    t = th;
+    b1 = v * rcp;
+    b2 = w * rcp;
+    return true;
+}
 
 }  // namespace pluecker

@@ -1,0 +1,120 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The long reliability regression (`make sim-regress`):
+#
+#   1. model: the long versions of the numerical-extremes and margin suites
+#      (PLUECKER_LONG=1 model_tests --gtest_filter='Extremes.*:MarginBound.*'):
+#      1M extreme + 1M transformed queries at every width pair of
+#      {6, 9, ..., 24}^2, the margin's boundary constructions, the exhaustive
+#      6/6 lattice and the 7/6 and 6/8 domains; zero false misses required;
+#   2. RTL: REGRESS_N (default 10^6) extreme queries (pluecker_sim gen --kind
+#      extreme) through the Verilated RTL at each of REGRESS_WIDTHS with
+#      `pluecker_sim query --check` (zero mismatches against the model), and
+#      the RTL's answers against `pluecker query --test exact` (zero false
+#      misses in conservative mode);
+#   3. cocotb: the long stress bench (PLUECKER_LONG=1
+#      tb/pluecker_intersector/test_stress.py).
+#
+# Environment: MODEL_BUILD (default build/model; must hold model_tests,
+# pluecker and the Python module), JOBS (default 2), REGRESS_N,
+# REGRESS_WIDTHS (default "6x6 9x15 16x16 24x24 16x16n"; a trailing n =
+# nearest mode, where the exact comparison is skipped), REGRESS_SIM_ROOT
+# (default build/sim: where `make sim` puts the harness), REGRESS_OUT
+# (default build/regress), REGRESS_PARTS (default "model rtl cocotb").
+# Exit status 0 only when every part passes. Run through scripts/venv-exec.sh
+# (the Makefile does).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+cd "$root"
+model_build="$(cd "${MODEL_BUILD:-build/model}" && pwd)"
+jobs="${JOBS:-2}"
+n="${REGRESS_N:-1000000}"
+widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 24x24 16x16n}"
+sim_root="${REGRESS_SIM_ROOT:-build/sim}"
+out="${REGRESS_OUT:-build/regress}"
+parts="${REGRESS_PARTS:-model rtl cocotb}"
+mkdir -p "$out"
+summary="$out/summary.txt"
+: > "$summary"
+fail=0
+
+say() { echo "regress: $*" | tee -a "$summary"; }
+elapsed() { echo "$(($(date +%s) - $1)) s"; }
+
+for tool in model_tests pluecker; do
+  [[ -x "$model_build/$tool" ]] || { echo "regress: $model_build/$tool missing (run 'make build')" >&2; exit 2; }
+done
+
+# --- 1. model ------------------------------------------------------------------
+if [[ " $parts " == *" model "* ]]; then
+  t0=$(date +%s)
+  if PLUECKER_LONG=1 "$model_build/model_tests" --gtest_filter='Extremes.*:MarginBound.*' > "$out/model.log" 2>&1; then
+    say "model: long extremes and margin suites PASS ($(elapsed "$t0"); log $out/model.log)"
+  else
+    say "model: long extremes and margin suites FAIL ($(elapsed "$t0"); log $out/model.log)"
+    grep -E "FAILED|Failure" "$out/model.log" | head -10 | tee -a "$summary" || true
+    fail=1
+  fi
+  grep -E "total over|min slack of a real hit|exhaustive .*queries|lattice 6/6 \] [0-9]" "$out/model.log" \
+    | sed 's/^/regress:   /' | tee -a "$summary" || true
+fi
+
+# --- 2. RTL ------------------------------------------------------------------------
+if [[ " $parts " == *" rtl "* ]]; then
+  queries="$out/extreme_${n}.txt"
+  exact="$out/extreme_${n}.exact"
+  for w in $widths; do
+    mode=conservative
+    [[ "$w" == *n ]] && mode=nearest
+    cd_="${w%n}"
+    c="${cd_%x*}"
+    d="${cd_#*x}"
+    dir="$sim_root/${c}x${d}$([[ $mode == nearest ]] && echo _nearest || true)"
+    t0=$(date +%s)
+    if ! COORD_BITS="$c" DIR_BITS="$d" MODE="$mode" MODEL_BUILD="$model_build" SIM_OUT="$dir" SIM_JOBS="$jobs" \
+      sim/build.sh > "$out/build_$w.log" 2>&1; then
+      say "rtl $w: harness build FAIL (log $out/build_$w.log)"
+      fail=1
+      continue
+    fi
+    sim="$dir/pluecker_sim"
+    if [[ ! -s "$queries" ]]; then
+      "$sim" gen --n "$n" --kind extreme --seed 20261 --out "$queries"
+      "$model_build/pluecker" query --test exact "$queries" > "$exact"
+    fi
+    rc=0
+    "$sim" query --check "$queries" > "$out/rtl_$w.answers" 2> "$out/rtl_$w.log" || rc=$?
+    check="$(grep -E '^check' "$out/rtl_$w.log" | tail -1)"
+    if [[ $rc -ne 0 ]]; then
+      say "rtl $w ($mode): FAIL, $check ($(elapsed "$t0"))"
+      head -5 "$out/rtl_$w.log" | tee -a "$summary"
+      fail=1
+      continue
+    fi
+    if [[ $mode == conservative ]]; then
+      # Columns: exact answer, RTL answer. A false miss is 1 0.
+      read -r fm fh hits <<< "$(paste -d' ' "$exact" "$out/rtl_$w.answers" \
+        | awk '$1==1 && $2==0 {m++} $1==0 && $2==1 {h++} $1==1 {r++} END {print m+0, h+0, r+0}')"
+      say "rtl $w ($mode): $check; against exact: $hits real hits, $fm false misses, $fh false hits ($(elapsed "$t0"))"
+      [[ "$fm" == 0 ]] || fail=1
+    else
+      say "rtl $w ($mode): $check ($(elapsed "$t0"))"
+    fi
+  done
+fi
+
+# --- 3. cocotb stress ----------------------------------------------------------------
+if [[ " $parts " == *" cocotb "* ]]; then
+  t0=$(date +%s)
+  if PLUECKER_LONG=1 PLUECKER_PY_DIR="$model_build" python -m pytest -n "$jobs" -q \
+    tb/pluecker_intersector/test_stress.py > "$out/cocotb.log" 2>&1; then
+    say "cocotb: long stress PASS ($(elapsed "$t0"); log $out/cocotb.log)"
+  else
+    say "cocotb: long stress FAIL ($(elapsed "$t0"); log $out/cocotb.log)"
+    tail -5 "$out/cocotb.log" | tee -a "$summary"
+    fail=1
+  fi
+fi
+
+if [[ $fail == 0 ]]; then say "all PASS (summary $summary)"; else say "FAILED (summary $summary)"; fi
+exit $fail
