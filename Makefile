@@ -49,7 +49,10 @@ main: build
 	  echo "main: see $(OUT)/report/main.html" >&2; exit 1; \
 	fi
 
-test: test-cpp lint test-tb
+# The whole suite, as .ci/run runs it: C++ tests, lint, the pytest/cocotb
+# suite, the C++ tests again under ASan + UBSan (test-sanitize) and the
+# formal proof of the handshake rules (formal); both in blocks below.
+test: test-cpp lint test-tb test-sanitize formal
 
 test-cpp: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
@@ -60,8 +63,16 @@ lint: setup
 test-tb: build
 	PLUECKER_PY_DIR=$(CURDIR)/$(BUILD) $(ENV) python -m pytest -n $(JOBS) tb
 
+# Benchmarks (print figures; not tests): the software model (build, traversal
+# of every configuration, fixed point against float), the Verilator harness
+# (SIM_N queries at COORD_BITS/DIR_BITS) and the cocotb bench for comparison.
+BENCH_COCOTB_N ?= 20000
+
 bench: build
 	$(BUILD)/pluecker_bench
+	@$(MAKE) --no-print-directory sim-bench
+	$(ENV) python scripts/cocotb_bench.py --n $(BENCH_COCOTB_N) --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
+	  --py-dir $(BUILD)
 
 clean:
 	rm -rf build out
@@ -206,15 +217,17 @@ plan: build
 #               configuration one after another on teapot, spheres,
 #               ../shared/scenes/* when present and a synthetic scene of
 #               TABLES_SYNTH triangles; TABLES_SIZE^2 renders, best of
-#               TABLES_REPEAT, one thread. A benchmark, not a test (about
-#               4 minutes on 2 shared cores at the defaults). Results in
+#               TABLES_REPEAT, one thread. A benchmark, not a test (2-4
+#               minutes on 2 shared cores at the defaults). Results in
 #               out/tables/ (tables.json, tables.md, one PNG a scene).
 #               TABLES_SCENES=a,b,... replaces the scene list.
 # make peer     Embree 3 against our best configurations on the same rays
 #               (installs libembree-dev with apt when missing and run as
 #               root; otherwise says which command to run). Builds
 #               build/peer with -DPLUECKER_PEER=ON; results in out/peer/.
-#               PEER_SIZE^2 render rays + PEER_RANDOM random rays a scene.
+#               PEER_SIZE^2 render rays + PEER_RANDOM random rays a scene
+#               (about 6 minutes at the defaults, the build not counted).
+#               docs/report-tables.md: how to read both, measured figures.
 TABLES_SIZE   ?= 512
 TABLES_REPEAT ?= 3
 TABLES_SYNTH  ?= 4000000
@@ -232,6 +245,7 @@ tables: build
 	  --shared ../shared/scenes --out $(OUT)/tables $(if $(TABLES_SCENES),--scenes $(TABLES_SCENES))
 
 peer: setup
+	@mkdir -p build
 	@if ! dpkg -s libembree-dev > /dev/null 2>&1; then \
 	  if [ "$$(id -u)" = 0 ]; then \
 	    echo "peer: installing libembree-dev"; \
@@ -242,7 +256,6 @@ peer: setup
 	    echo "peer: Embree 3 is missing; install it with: sudo apt-get install libembree-dev" >&2; exit 1; \
 	  fi; \
 	fi
-	@mkdir -p build
 	@cmake -S model -B $(PEER_BUILD) -DCMAKE_BUILD_TYPE=Release -DPLUECKER_PEER=ON -DPLUECKER_PYTHON=OFF \
 	  > $(PEER_BUILD).configure.log 2>&1 || { cat $(PEER_BUILD).configure.log; exit 1; }
 	@cmake --build $(PEER_BUILD) -j$(JOBS) --target pluecker_peer -- --no-print-directory
@@ -258,9 +271,14 @@ peer: setup
 #                   through `fixed` at every width pair of {6,9,..,24}^2 and the
 #                   margin's boundary suites (PLUECKER_LONG=1 model_tests),
 #                   REGRESS_N extreme queries through the Verilated RTL at
-#                   REGRESS_WIDTHS (zero mismatches against the model, zero
-#                   false misses against exact), and the long cocotb stress
-#                   bench. Summary in build/regress/summary.txt.
+#                   REGRESS_WIDTHS (built with ASSERT_ON in build/regress/sim;
+#                   zero mismatches against the model, zero false misses
+#                   against exact), and the long cocotb stress bench (its
+#                   sizes scale with REGRESS_N). Summary in
+#                   build/regress/summary.txt. About 20 min on 2 quiet
+#                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
+#                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
+#                   end-to-end check (13 min loaded, builds included).
 # make formal       SymbiYosys (YoWASP) + z3: k-induction proof of the
 #                   handshake and flow-control properties at 6/6, and cover;
 #                   FORMAL_FLAGS=--mutants also checks that four seeded RTL

@@ -11,16 +11,21 @@
 #      extreme) through the Verilated RTL at each of REGRESS_WIDTHS with
 #      `pluecker_sim query --check` (zero mismatches against the model), and
 #      the RTL's answers against `pluecker query --test exact` (zero false
-#      misses in conservative mode);
+#      misses in conservative mode). The harness is built with the RTL's
+#      ASSERT_ON assertions compiled in (SIM_ASSERT=1), in its own
+#      directories (REGRESS_SIM_ROOT), so that it does not force `make sim`'s
+#      builds to be redone;
 #   3. cocotb: the long stress bench (PLUECKER_LONG=1
-#      tb/pluecker_intersector/test_stress.py).
+#      tb/pluecker_intersector/test_stress.py), its sizes scaled with REGRESS_N
+#      (25x the `make test` sizes at 10^6, never below 1x).
 #
 # Environment: MODEL_BUILD (default build/model; must hold model_tests,
 # pluecker and the Python module), JOBS (default 2), REGRESS_N,
 # REGRESS_WIDTHS (default "6x6 9x15 16x16 24x24 16x16n"; a trailing n =
 # nearest mode, where the exact comparison is skipped), REGRESS_SIM_ROOT
-# (default build/sim: where `make sim` puts the harness), REGRESS_OUT
-# (default build/regress), REGRESS_PARTS (default "model rtl cocotb").
+# (default build/regress/sim), REGRESS_ASSERT (default 1: SIM_ASSERT for the
+# harness), REGRESS_OUT (default build/regress), REGRESS_PARTS (default
+# "model rtl cocotb").
 # Exit status 0 only when every part passes. Run through scripts/venv-exec.sh
 # (the Makefile does).
 set -euo pipefail
@@ -30,7 +35,8 @@ model_build="$(cd "${MODEL_BUILD:-build/model}" && pwd)"
 jobs="${JOBS:-2}"
 n="${REGRESS_N:-1000000}"
 widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 24x24 16x16n}"
-sim_root="${REGRESS_SIM_ROOT:-build/sim}"
+sim_root="${REGRESS_SIM_ROOT:-build/regress/sim}"
+sim_assert="${REGRESS_ASSERT:-1}"
 out="${REGRESS_OUT:-build/regress}"
 parts="${REGRESS_PARTS:-model rtl cocotb}"
 mkdir -p "$out"
@@ -72,7 +78,7 @@ if [[ " $parts " == *" rtl "* ]]; then
     dir="$sim_root/${c}x${d}$([[ $mode == nearest ]] && echo _nearest || true)"
     t0=$(date +%s)
     if ! COORD_BITS="$c" DIR_BITS="$d" MODE="$mode" MODEL_BUILD="$model_build" SIM_OUT="$dir" SIM_JOBS="$jobs" \
-      sim/build.sh > "$out/build_$w.log" 2>&1; then
+      SIM_ASSERT="$sim_assert" sim/build.sh > "$out/build_$w.log" 2>&1; then
       say "rtl $w: harness build FAIL (log $out/build_$w.log)"
       fail=1
       continue
@@ -106,7 +112,10 @@ fi
 # --- 3. cocotb stress ----------------------------------------------------------------
 if [[ " $parts " == *" cocotb "* ]]; then
   t0=$(date +%s)
-  if PLUECKER_LONG=1 PLUECKER_PY_DIR="$model_build" python -m pytest -n "$jobs" -q \
+  scale=$(((25 * n + 500000) / 1000000))
+  ((scale >= 1)) || scale=1
+  say "cocotb: stress scale $scale (x the make-test sizes)"
+  if PLUECKER_LONG=1 PLUECKER_STRESS_SCALE="$scale" PLUECKER_PY_DIR="$model_build" python -m pytest -n "$jobs" -q \
     tb/pluecker_intersector/test_stress.py > "$out/cocotb.log" 2>&1; then
     say "cocotb: long stress PASS ($(elapsed "$t0"); log $out/cocotb.log)"
   else
