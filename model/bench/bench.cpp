@@ -3,7 +3,10 @@
 // the report's five configurations (smits-mul-cls, smits-dist, smits-dsa,
 // pluecker-cls, pluecker-dsa) on a large synthetic sphere, for camera rays
 // (a view of the sphere) and random rays (origins and directions random in
-// the cube), closest hit.
+// the cube), closest hit. Last, the fixed-point box test of the software
+// renderer (--test fixed, 16/16 bits, conservative) against float pluecker
+// on the same rays: the fixed test through the direct traversal and through
+// the batched traversal with the software engine (the renderer's path).
 #include "pluecker/bvh.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/render.hpp"
@@ -33,7 +36,13 @@ struct Options {
     std::size_t random = 1000000;  // random rays
     int repeat = 1;             // best of N timings
     std::vector<BuildMethod> builds{BuildMethod::Median, BuildMethod::Sah};
+    std::vector<int> configs{0, 1, 2, 3, 4};  // indices into kConfigNames
+    bool fixed = true;                         // the fixed-point comparison
+    int fixed_size = 512;                      // its camera rays: N x N
+    int bins = BuildOptions{}.bins;            // SAH bins per axis
 };
+
+const char* kConfigNames[5] = {"smits-mul-cls", "smits-dist", "smits-dsa", "pluecker-cls", "pluecker-dsa"};
 
 void usage() {
     std::printf(
@@ -42,7 +51,12 @@ void usage() {
         "  --size N     camera rays: N x N view of the scene, 8x8 tiles   [1024]\n"
         "  --random N   random rays, origins and directions in the cube   [1000000]\n"
         "  --repeat N   time each run N times, report the best            [1]\n"
-        "  --build B    median | sah | both                               [both]\n");
+        "  --build B    median | sah | both                               [both]\n"
+        "  --config C   one configuration (smits-mul-cls, smits-dist, smits-dsa,\n"
+        "               pluecker-cls, pluecker-dsa) or all                [all]\n"
+        "  --bins N     SAH build: bins per axis (2..64)                  [16]\n"
+        "  --fixed N    fixed-point vs float comparison on N x N camera rays\n"
+        "               and N*N random rays; 0: skip                      [512]\n");
 }
 
 Options parse(int argc, char** argv) {
@@ -70,6 +84,18 @@ Options parse(int argc, char** argv) {
             const std::string v = value();
             o.builds = v == "both" ? std::vector<BuildMethod>{BuildMethod::Median, BuildMethod::Sah}
                                    : std::vector<BuildMethod>{parse_build_method(v)};
+        }
+        else if (a == "--config") {
+            const std::string v = value();
+            o.configs.clear();
+            for (int c = 0; c < 5; ++c)
+                if (v == "all" || v == kConfigNames[c]) o.configs.push_back(c);
+            if (o.configs.empty()) throw InputError("option --config: unknown configuration '" + v + "'");
+        }
+        else if (a == "--bins") o.bins = static_cast<int>(number(2, 64));
+        else if (a == "--fixed") {
+            o.fixed_size = static_cast<int>(number(0, 16384));
+            o.fixed = o.fixed_size > 0;
         }
         else if (a == "--help" || a == "-h") {
             usage();
@@ -177,7 +203,78 @@ Result run_config(const Accel& a, int config, const std::vector<Ray>& rays, int 
     }
 }
 
-const char* kConfigNames[5] = {"smits-mul-cls", "smits-dist", "smits-dsa", "pluecker-cls", "pluecker-dsa"};
+// Closest hits of `rays` through a tracer, best of `repeat`.
+Result run_tracer(const Tracer& t, const std::vector<Ray>& rays, int repeat) {
+    Result best;
+    for (int k = 0; k < repeat; ++k) {
+        Result r;
+        const double t0 = thread_seconds();
+        for (const Ray& ray : rays) {
+            const Hit h = t.closest(ray, r.st);
+            r.hits += h.found();
+            r.checksum = r.checksum * 31 + h.tri;
+        }
+        r.mrays = static_cast<double>(rays.size()) / (thread_seconds() - t0) * 1e-6;
+        if (r.mrays > best.mrays) best = r;
+    }
+    return best;
+}
+
+// The same through the batched traversal and the software engine, the
+// fixed-test path of the renderer (render_batched, pool 256).
+Result run_batched(const Accel& a, const std::vector<Ray>& rays, int repeat) {
+    Result best;
+    SoftwareBoxEngine engine(a.format);
+    for (int k = 0; k < repeat; ++k) {
+        Result r;
+        const double t0 = thread_seconds();
+        const std::vector<Hit> hits = trace_batched(a, ChildOrder::Dsa, engine, RenderOptions{}.pool, rays, false, r.st);
+        r.mrays = static_cast<double>(rays.size()) / (thread_seconds() - t0) * 1e-6;
+        for (const Hit& h : hits) {
+            r.hits += h.found();
+            r.checksum = r.checksum * 31 + h.tri;
+        }
+        if (r.mrays > best.mrays) best = r;
+    }
+    return best;
+}
+
+// Fixed-point (16/16 conservative, the renderer's default) against float
+// pluecker, dsa order, on the same rays: Mray/s and box tests per second.
+int compare_fixed(const Mesh& mesh, const Bvh& bvh, BuildMethod method, const Options& o) {
+    Accel accel(mesh, bvh);
+    const FixedFormat f;
+    accel.quantize(f);
+    const std::vector<Ray> sets[2] = {camera_rays(mesh, o.fixed_size),
+                                      random_rays(static_cast<std::size_t>(o.fixed_size) * o.fixed_size, 0xf1c5du)};
+    const char* set_names[2] = {"camera", "random"};
+    std::printf("\nfixed-point %d/%d %s vs float pluecker, dsa order, %s BVH; %d x %d camera rays, %zu random\n",
+                f.coord_bits, f.dir_bits, mode_name(f.mode), method_name(method), o.fixed_size, o.fixed_size, sets[1].size());
+    std::printf("%-7s %-26s %10s %12s %9s %9s\n", "rays", "test (path)", "Mray/s", "Mbox tests/s", "boxes/ray",
+                "tris/ray");
+    const auto pluecker = make_tracer(accel, BoxTestKind::Pluecker, ChildOrder::Dsa);
+    const auto fixed = make_tracer(accel, BoxTestKind::Fixed, ChildOrder::Dsa);
+    int status = 0;
+    for (int s = 0; s < 2; ++s) {
+        const std::vector<Ray>& rays = sets[s];
+        const Result r[3] = {run_tracer(*pluecker, rays, o.repeat), run_tracer(*fixed, rays, o.repeat),
+                             run_batched(accel, rays, o.repeat)};
+        const char* names[3] = {"pluecker float (direct)", "fixed (direct)", "fixed (batched, software)"};
+        for (int k = 0; k < 3; ++k) {
+            const double n = static_cast<double>(rays.size());
+            const double boxes = static_cast<double>(r[k].st.box_tests);
+            std::printf("%-7s %-26s %10.2f %12.1f %9.1f %9.1f\n", set_names[s], names[k], r[k].mrays,
+                        r[k].mrays * boxes / n, boxes / n, static_cast<double>(r[k].st.tri_tests) / n);
+            if (r[k].checksum != r[0].checksum) {
+                std::printf("ERROR: %s finds other hits than float pluecker\n", names[k]);
+                status = 1;
+            }
+        }
+        std::printf("%-7s fixed/float: %.2fx Mray/s (direct), %.2fx (batched)\n", set_names[s],
+                    r[1].mrays / r[0].mrays, r[2].mrays / r[0].mrays);
+    }
+    return status;
+}
 
 int bench(const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -196,6 +293,7 @@ int bench(const Options& o) {
     for (const BuildMethod method : o.builds) {
         BuildOptions bo;
         bo.method = method;
+        bo.bins = o.bins;
         // Best of `repeat` builds, in thread CPU time.
         Bvh bvh;
         double build_ms = 0;
@@ -210,7 +308,8 @@ int bench(const Options& o) {
         std::printf("%-7s build %.1f ms: %zu nodes, %zu leaves, depth %d, SAH cost %.2f\n", method_name(method),
                     build_ms, bvh.nodes.size(), bvh.leaf_count(), bvh.depth(), sah_cost(bvh));
         std::uint64_t cam_sum = 0, rnd_sum = 0;
-        for (int c = 0; c < 5; ++c) {
+        bool first = true;
+        for (const int c : o.configs) {
             const Result rc = run_config(accel, c, cam, o.repeat);
             const Result rr = run_config(accel, c, rnd, o.repeat);
             auto per = [](std::uint64_t v, std::size_t n) { return static_cast<double>(v) / static_cast<double>(n); };
@@ -220,14 +319,16 @@ int bench(const Options& o) {
                         per(rr.st.box_tests, rnd.size()), per(rr.st.tri_tests, rnd.size()));
             std::fflush(stdout);
             // Every configuration must find the same hits.
-            if (c == 0) {
+            if (first) {
                 cam_sum = rc.checksum;
                 rnd_sum = rr.checksum;
+                first = false;
             } else if (rc.checksum != cam_sum || rr.checksum != rnd_sum) {
-                std::printf("ERROR: %s finds other hits than %s\n", kConfigNames[c], kConfigNames[0]);
+                std::printf("ERROR: %s finds other hits than %s\n", kConfigNames[c], kConfigNames[o.configs[0]]);
                 status = 1;
             }
         }
+        if (o.fixed && method == o.builds.back()) status |= compare_fixed(mesh, bvh, method, o);
     }
     return status;
 }

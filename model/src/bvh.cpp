@@ -65,7 +65,8 @@ struct VBox {
 // One triangle during the build: its bounds. Centroids are kept doubled
 // (lo + hi) to save a multiplication; all centroid bounds are doubled too.
 // Lane 3 of lo is +inf, so that binning can count in lane 3 of a bin (see
-// Bins); lane 3 of every other vector is ignored.
+// Bins); lane 3 of hi holds the prim's half area, computed once for the
+// leaf test of sah_node; lane 3 of every other vector is ignored.
 struct alignas(32) Prim {
     VBox b;
     V4 centroid2() const { return b.lo + b.hi; }
@@ -396,7 +397,7 @@ struct Builder {
         // contains each of its prims' boxes); for two prims that is exact.
         if (may_leaf) {
             float sum = 0.0f;
-            for (std::uint32_t i = t.begin; i < t.end; ++i) sum += prims[i].b.half_area();
+            for (std::uint32_t i = t.begin; i < t.end; ++i) sum += prims[i].b.hi[3];  // its half area
             if (static_cast<float>(n) * ci * area <= opt.cost_traverse * area + ci * sum) return leaf(t);
         }
         const float nb = static_cast<float>(opt.bins);
@@ -486,7 +487,9 @@ VBox tri_bounds(std::span<const Vec3> v, const std::array<std::uint32_t, 3>& tri
     }
     V4 lo = vmin(vmin(a, b), c);
     lo[3] = kInf;
-    return VBox{lo, vmax(vmax(a, b), c)};
+    VBox box{lo, vmax(vmax(a, b), c)};
+    box.hi[3] = box.half_area();  // see Prim
+    return box;
 }
 
 }  // namespace

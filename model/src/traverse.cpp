@@ -109,27 +109,48 @@ Accel::Accel(const Mesh& mesh, const Bvh& bvh) {
     }
     tris = std::span<const LeafTri>(tri_store.get(), nt);
 
-    // Pair layout: one pair per interior node, numbered in the order of the
-    // children's index in `nodes` (the builder's order).
-    std::vector<std::pair<std::int32_t, std::uint32_t>> by_first;  // (first child, node)
-    for (std::size_t i = 0; i < nn; ++i)
-        if (!bvh.nodes[i].is_leaf()) {
-            const std::int32_t f = bvh.nodes[i].first;
-            if (f < 0 || static_cast<std::size_t>(f) + 1 >= nn)
-                throw InputError("traversal: BVH node " + std::to_string(i) + " names children " + std::to_string(f));
-            by_first.emplace_back(f, static_cast<std::uint32_t>(i));
-        }
-    std::sort(by_first.begin(), by_first.end());
+    // Pair layout: one pair per interior node reached from the root, in
+    // treelets of kTreeletDepth levels (see Accel::pairs): treelet roots
+    // are taken depth first, child 0's side first; a treelet's pairs level
+    // by level. A node reached twice is an error (the BVH is not a tree).
     std::vector<std::int32_t> pair_of(nn, -1);  // interior node -> pair of its children
-    for (std::size_t k = 0; k < by_first.size(); ++k) pair_of[by_first[k].second] = static_cast<std::int32_t>(k);
+    std::vector<std::uint8_t> treelet(nn, 0);   // pairs of the treelet a root starts
+    std::vector<std::uint32_t> order;           // order[k]: the node whose children pair k holds
+    std::vector<std::uint32_t> roots{0};
+    std::vector<std::uint32_t> level, below;
+    while (!roots.empty()) {
+        const std::uint32_t r = roots.back();
+        roots.pop_back();
+        if (bvh.nodes[r].is_leaf()) continue;  // the root alone may be a leaf here
+        const std::size_t start = order.size();
+        level.assign(1, r);
+        for (int d = 0; d < kTreeletDepth && !level.empty(); ++d) {
+            below.clear();
+            for (const std::uint32_t i : level) {
+                const BvhNode& n = bvh.nodes[i];
+                const std::int32_t f = n.first;
+                if (f < 0 || static_cast<std::size_t>(f) + 1 >= nn || n.axis() > 2)
+                    throw InputError("traversal: BVH node " + std::to_string(i) + " names children " +
+                                     std::to_string(f) + " on axis " + std::to_string(n.axis()));
+                if (pair_of[i] >= 0) throw InputError("traversal: BVH node " + std::to_string(i) + " is reached twice");
+                pair_of[i] = static_cast<std::int32_t>(order.size());
+                order.push_back(i);
+                for (std::uint32_t c = 0; c < 2; ++c)
+                    if (!bvh.nodes[static_cast<std::size_t>(f) + c].is_leaf()) below.push_back(static_cast<std::uint32_t>(f) + c);
+            }
+            level.swap(below);
+        }
+        treelet[r] = static_cast<std::uint8_t>(order.size() - start);
+        roots.insert(roots.end(), level.rbegin(), level.rend());  // the leftmost on top
+    }
     auto ref = [&](std::size_t i) {
         const BvhNode& n = bvh.nodes[i];
-        return n.is_leaf() ? ChildRef{n.first, n.count} : ChildRef{pair_of[i], n.count};
+        return n.is_leaf() ? ChildRef{n.first, n.count} : ChildRef{pair_of[i], -(n.axis() + 4 * treelet[i])};
     };
-    pair_store.reset(alloc_records<NodePair>(by_first.size()));
-    for (std::size_t k = 0; k < by_first.size(); ++k) {
+    pair_store.reset(alloc_records<NodePair>(order.size()));
+    for (std::size_t k = 0; k < order.size(); ++k) {
         NodePair p;
-        const auto f = static_cast<std::size_t>(by_first[k].first);
+        const auto f = static_cast<std::size_t>(bvh.nodes[order[k]].first);
         for (int c = 0; c < 2; ++c) {
             const Box& b = bvh.nodes[f + static_cast<std::size_t>(c)].box;
             for (int a = 0; a < 3; ++a) {
@@ -140,7 +161,7 @@ Accel::Accel(const Mesh& mesh, const Bvh& bvh) {
         }
         std::construct_at(pair_store.get() + k, p);
     }
-    pairs = std::span<const NodePair>(pair_store.get(), by_first.size());
+    pairs = std::span<const NodePair>(pair_store.get(), order.size());
     root = ref(0);
 }
 

@@ -115,14 +115,19 @@ inline constexpr int kMaxStack = 256;
 // 4-lane vector per axis, so that both boxes are tested at once.
 
 // A child as the kernels see it: a leaf (count > 0: triangles tris[first,
-// first + count)) or an interior node (count <= 0, split axis -count, its
-// children in pairs[first]).
+// first + count)) or an interior node (count <= 0, its children in
+// pairs[first]; -count = split axis + 4 * treelet size, see Accel).
 struct ChildRef {
     std::int32_t first;
     std::int32_t count;
     bool is_leaf() const { return count > 0; }
-    int axis() const { return -count; }
+    int axis() const { return -count & 3; }
+    // Pairs of the treelet this node's pair starts (0: not a treelet root).
+    int treelet_size() const { return -count >> 2; }
 };
+
+// Levels of the pair layout's treelets (Accel): up to 1 + 2 + 4 pairs.
+inline constexpr int kTreeletDepth = 3;
 
 struct alignas(64) NodePair {
     // box[a] = {lo of child 0, lo of child 1, hi of child 0, hi of child 1}
@@ -147,8 +152,11 @@ struct Accel {
     int depth = 1;  // levels of the BVH
     std::span<const LeafTri> tris;
     // The same tree for the float kernels: root = nodes[0] as a ChildRef
-    // (an interior root names its children's pair); pairs in the order of
-    // the children's indices in `nodes`.
+    // (an interior root names its children's pair). Pairs are laid out in
+    // treelets of kTreeletDepth levels: treelets in depth-first order, the
+    // pairs of a treelet breadth-first and contiguous, so that a ray
+    // entering a treelet (at its root, ChildRef::treelet_size() > 0) fetches
+    // all of its lines at once rather than one level at a time.
     ChildRef root{};
     std::span<const NodePair> pairs;
     struct FreeDeleter {
@@ -555,13 +563,13 @@ done:
 // The same traversal over Accel::pairs for a policy with kPairs: both
 // children of a node tested by one hit2 call. Visits the same nodes in the
 // same order, counts the same and returns the same hit as traverse_class.
-[[gnu::always_inline]] inline void prefetch_child(const Accel& a, ChildRef c) {
+[[gnu::always_inline]] inline void prefetch_child(const NodePair* pairs, const LeafTri* tris, ChildRef c) {
     if (c.is_leaf()) {
-        const char* p = reinterpret_cast<const char*>(a.tris.data() + c.first);
+        const char* p = reinterpret_cast<const char*>(tris + c.first);
         __builtin_prefetch(p);
         __builtin_prefetch(p + c.count * sizeof(LeafTri) - 1);
     } else {
-        __builtin_prefetch(a.pairs.data() + c.first);
+        __builtin_prefetch(pairs + c.first);
     }
 }
 
@@ -608,7 +616,7 @@ template <class Policy, ChildOrder Order, bool AnyHit, RayClass C>
 Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, TraversalStats& st) {
     static_assert(Order != ChildOrder::Dist || Policy::kDistance, "dist order needs the entry distance");
     struct Entry {
-        std::int32_t first, count;
+        ChildRef ref;
         float tnear;
     };
     auto s = test.setup(ray);
@@ -626,7 +634,9 @@ Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, Traversal
         stack = deep.data();
     }
     int sp = 0;
-    std::uint64_t visits = 0, boxes = 1, tri_tests = 0;
+    // Counters in registers; box tests = 1 (the root) + 2 per interior node
+    // visited, taken from the visits and the leaf visits at the end.
+    std::uint64_t visits = 0, leaves = 0, tri_tests = 0;
     ChildRef cur = a.root;
     {
         float t0;
@@ -635,20 +645,23 @@ Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, Traversal
     for (;;) {
         ++visits;
         if (cur.is_leaf()) {
+            ++leaves;
             const float before = best.t;
             if (leaf(tr, tris + cur.first, cur.count, best, tri_tests)) goto done;
             if (best.t < before) test.shrink(s, best.t);
         } else {
             const NodePair& p = pairs[cur.first];
-            boxes += 2;
-            // The children's data (their pair or their triangles) is fetched
+            // Entering a treelet: its other pairs are fetched now. The
+            // children's data (their pair or their triangles) is fetched
             // while the boxes are tested.
-            prefetch_child(a, p.child[0]);
-            prefetch_child(a, p.child[1]);
+            for (int k = 1; k < cur.treelet_size(); ++k) __builtin_prefetch(&p + k);
+            prefetch_child(pairs, tris, p.child[0]);
+            prefetch_child(pairs, tris, p.child[1]);
             Float4 tn;
             const unsigned hit = test.template hit2<C>(s, p, tn);
-            // Branches, not a computed index: the next node's address is
-            // then predicted, and its loads start before the test ends.
+            // Branches on the hit mask, not a computed index: the next
+            // node's address is then predicted, and its loads start before
+            // the test ends. The order of two hit children is a select.
             if (hit == 3u) {
                 bool swap;
                 if constexpr (Order == ChildOrder::Fixed)
@@ -658,13 +671,12 @@ Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, Traversal
                 else
                     swap = tn[1] < tn[0];
                 constexpr bool kDist = Order == ChildOrder::Dist;
-                if (swap) {
-                    stack[sp++] = Entry{p.child[0].first, p.child[0].count, kDist ? tn[0] : 0.0f};
-                    cur = p.child[1];
-                } else {
-                    stack[sp++] = Entry{p.child[1].first, p.child[1].count, kDist ? tn[1] : 0.0f};
-                    cur = p.child[0];
-                }
+                const auto r0 = std::bit_cast<std::uint64_t>(p.child[0]);
+                const auto r1 = std::bit_cast<std::uint64_t>(p.child[1]);
+                const std::uint64_t near_ref = swap ? r1 : r0, far_ref = swap ? r0 : r1;
+                const float far_t = kDist ? (swap ? tn[0] : tn[1]) : 0.0f;
+                stack[sp++] = Entry{std::bit_cast<ChildRef>(far_ref), far_t};
+                cur = std::bit_cast<ChildRef>(near_ref);
                 continue;
             }
             if (hit == 1u) {
@@ -682,13 +694,13 @@ Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, Traversal
             if constexpr (Order == ChildOrder::Dist) {
                 if (stack[sp].tnear > best.t) continue;
             }
-            cur = ChildRef{stack[sp].first, stack[sp].count};
+            cur = stack[sp].ref;
             break;
         }
     }
 done:
     st.node_visits += visits;
-    st.box_tests += boxes;
+    st.box_tests += 1 + 2 * (visits - leaves);
     st.tri_tests += tri_tests;
     return best.found() ? best : Hit{};
 }
