@@ -67,7 +67,13 @@ int cmd_query(const std::vector<std::string>& argv) {
                                                        FixedFormat::kMinBits, FixedFormat::kMaxBits));
         fmt.dir_bits = static_cast<int>(
             args.get_int("dir-bits", FixedFormat::kDefaultDirBits, FixedFormat::kMinBits, FixedFormat::kMaxBits));
-        if (args.has("mode")) fmt.mode = parse_fixed_mode(args.get("mode", ""));
+        if (args.has("mode")) {
+            try {
+                fmt.mode = parse_fixed_mode(args.get("mode", ""));
+            } catch (const InputError& e) {
+                throw InputError(std::string("option --mode: ") + e.what());
+            }
+        }
         fmt.validate();
     } else {
         for (const char* opt : {"coord-bits", "dir-bits", "mode"})

@@ -7,6 +7,7 @@
 #include "args.hpp"
 
 #include "pluecker/bvh.hpp"
+#include "pluecker/fixed.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/render.hpp"
 #include "pluecker/traverse.hpp"
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -54,10 +56,76 @@ inline Vec3 parse_vec3(const Args& a, const std::string& name, const Vec3& fallb
         const double x = std::strtod(part.c_str(), &end);
         if (part.empty() || *end != '\0' || !std::isfinite(x))
             throw InputError("option --" + name + ": '" + part + "' is not a finite number");
+        if (std::fabs(x) > std::numeric_limits<float>::max())  // a float cast of it is undefined
+            throw InputError("option --" + name + ": '" + part + "' is outside the float range");
         v[k] = static_cast<float>(x);
         pos = comma + 1;
     }
     return v;
+}
+
+// "option --NAME: " in front of an InputError of a parse_* function whose
+// message names the value but not the flag.
+template <class F>
+auto with_flag(const char* name, F&& parse) {
+    try {
+        return parse();
+    } catch (const InputError& e) {
+        throw InputError(std::string("option --") + name + ": " + e.what());
+    }
+}
+
+// --epsilon: finite, >= 0, and representable as a float (the build works in
+// float; a cast of a larger double is undefined).
+inline float parse_epsilon(const Args& a, float fallback) {
+    if (!a.has("epsilon")) return fallback;
+    const double e = a.get_double("epsilon", fallback);
+    const std::string s = a.get("epsilon", "");
+    if (!std::isfinite(e)) throw InputError("option --epsilon: '" + s + "' is not a finite number");
+    if (!(e >= 0.0)) throw InputError("option --epsilon: must be >= 0 (got " + s + ")");
+    if (e > std::numeric_limits<float>::max()) throw InputError("option --epsilon: '" + s + "' is outside the float range");
+    return static_cast<float>(e);
+}
+
+// With --test fixed every BVH box must quantise into the fixed-point range.
+// The scene fills [-1, 1]^3 (make_scene normalises it) and a node box is its
+// triangles' bounds grown by epsilon in float, so the largest possible box
+// is [-1 - e, 1 + e] on every axis; quantising that one box is the exact
+// test, done before the (possibly long) build.
+inline void check_epsilon_fixed(float epsilon, const FixedFormat& f) {
+    const Box widest{Vec3(-1.0f - epsilon), Vec3(1.0f + epsilon)};
+    try {
+        (void)fixed_quantize_box(widest, f);
+    } catch (const InputError&) {
+        std::ostringstream os;
+        os << "option --epsilon: " << epsilon << " grows the BVH boxes of the scene (normalised to [-1, 1]) to ["
+           << widest.lo.x << ", " << widest.hi.x << "], outside the fixed-point range [-2, 2) of --test fixed";
+        throw InputError(os.str());
+    }
+}
+
+// The camera in the float arithmetic the renderer uses (render.cpp's
+// Shader): w = normalize(eye - look), u = normalize(cross(up, w)),
+// v = cross(w, u). Every one must be finite and non-zero, else the rays are
+// NaN; each failure names the flags that cause it.
+inline void check_camera(const Camera& c) {
+    auto finite = [](const Vec3& x) { return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z); };
+    auto nonzero = [](const Vec3& x) { return x.x != 0.0f || x.y != 0.0f || x.z != 0.0f; };
+    const Vec3 diff = c.eye - c.look;
+    if (!nonzero(diff)) throw InputError("options --eye and --look: must differ");
+    const Vec3 w = glm::normalize(diff);
+    if (!finite(diff) || !finite(w) || !nonzero(w))
+        throw InputError("options --eye and --look: the view direction eye - look cannot be normalised in "
+                         "float arithmetic (its length must lie between about 1e-18 and 1e18)");
+    const Vec3 side = glm::cross(c.up, w);
+    if (finite(side) && !nonzero(side)) throw InputError("option --up: parallel to the view direction");
+    const Vec3 u = glm::normalize(side);
+    if (!finite(side) || !finite(u) || !nonzero(u))
+        throw InputError("option --up: cross(up, view direction) cannot be normalised in float arithmetic "
+                         "(|up| must lie between about 1e-18 and 1e18, and up must not be nearly parallel to "
+                         "the view direction)");
+    const Vec3 v = glm::cross(w, u);
+    if (!finite(v) || !nonzero(v)) throw InputError("options --eye, --look and --up: no valid camera basis");
 }
 
 // The scene, BVH, Accel and options (pluecker/render.hpp's RenderSetup).
@@ -70,7 +138,7 @@ inline std::unique_ptr<SceneSetup> make_setup(const Args& a) {
     o.order = parse_child_order(a.get("order", "dsa"));
     check_combination(o.test, o.order);
     BuildOptions bo;
-    bo.method = parse_build_method(a.get("build", "sah"));
+    bo.method = with_flag("build", [&] { return parse_build_method(a.get("build", "sah")); });
     const long size = a.get_int("size", 512, 1, 16384);
     o.width = static_cast<int>(a.get_int("width", size, 1, 16384));
     o.height = static_cast<int>(a.get_int("height", size, 1, 16384));
@@ -81,17 +149,13 @@ inline std::unique_ptr<SceneSetup> make_setup(const Args& a) {
                                                     FixedFormat::kMinBits, FixedFormat::kMaxBits));
     o.fixed.dir_bits = static_cast<int>(
         a.get_int("dir-bits", FixedFormat::kDefaultDirBits, FixedFormat::kMinBits, FixedFormat::kMaxBits));
-    try {
-        o.fixed.mode = parse_fixed_mode(a.get("mode", "conservative"));
-    } catch (const InputError& e) {
-        throw InputError(std::string("option --mode: ") + e.what());
-    }
+    o.fixed.mode = with_flag("mode", [&] { return parse_fixed_mode(a.get("mode", "conservative")); });
     o.threads = static_cast<int>(a.get_int("threads", 1, 1, 1024));
     o.pool = static_cast<std::size_t>(a.get_int("pool", 256, 1, 1 << 20));
     o.max_depth = static_cast<int>(a.get_int("max-depth", 4, 0, 32));
     o.light_count = static_cast<int>(a.get_int("lights", 2, 1, 2));
-    bo.epsilon = static_cast<float>(a.get_double("epsilon", bo.epsilon));
-    if (!(bo.epsilon >= 0.0f)) throw InputError("option --epsilon: must be >= 0");
+    bo.epsilon = parse_epsilon(a, bo.epsilon);
+    if (fixed) check_epsilon_fixed(bo.epsilon, o.fixed);
 
     // Camera flags are checked before the (possibly long) build; the
     // defaults they override come from the scene.
@@ -108,11 +172,7 @@ inline std::unique_ptr<SceneSetup> make_setup(const Args& a) {
         if (a.has("look")) c.look = look;
         if (a.has("up")) c.up = up;
         if (a.has("fov")) c.fov_deg = fov;
-        const Vec3 w = c.eye - c.look;
-        if (!(w.x != 0.0f || w.y != 0.0f || w.z != 0.0f)) throw InputError("options --eye and --look: must differ");
-        const Vec3 side = glm::cross(c.up, w);
-        if (!(side.x != 0.0f || side.y != 0.0f || side.z != 0.0f))
-            throw InputError("option --up: parallel to the view direction");
+        check_camera(c);
         s->opts.camera = c;
     }
     return s;

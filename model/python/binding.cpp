@@ -136,6 +136,19 @@ FixedFormat make_format(int coord_bits, int dir_bits, const py::object& mode) {
 
 Query make_query(const Ray& r, const Box& b) { return Query{r, b}; }
 
+// Setter of FixedFormat.coord_bits / dir_bits: a width outside
+// MIN_BITS..MAX_BITS would reach shifts by a negative or too large count
+// (undefined behaviour) in the fixed-point code, so it is refused here and
+// the format keeps its old value.
+auto width_setter(int FixedFormat::*field, const char* name) {
+    return [field, name](FixedFormat& f, int bits) {
+        if (bits < FixedFormat::kMinBits || bits > FixedFormat::kMaxBits)
+            throw InputError(std::string("FixedFormat.") + name + " = " + std::to_string(bits) + " is outside " +
+                             std::to_string(FixedFormat::kMinBits) + ".." + std::to_string(FixedFormat::kMaxBits));
+        f.*field = bits;
+    };
+}
+
 }  // namespace
 }  // namespace pluecker
 
@@ -243,8 +256,10 @@ PYBIND11_MODULE(pluecker_py, m) {
     py::class_<FixedFormat>(m, "FixedFormat", "Fixed-point format: widths and rounding mode (see fixed.hpp)")
         .def(py::init(&make_format), py::arg("coord_bits") = FixedFormat::kDefaultCoordBits,
              py::arg("dir_bits") = FixedFormat::kDefaultDirBits, py::arg("mode") = FixedMode::Conservative)
-        .def_readwrite("coord_bits", &FixedFormat::coord_bits)
-        .def_readwrite("dir_bits", &FixedFormat::dir_bits)
+        .def_property("coord_bits", [](const FixedFormat& f) { return f.coord_bits; },
+                      width_setter(&FixedFormat::coord_bits, "coord_bits"))
+        .def_property("dir_bits", [](const FixedFormat& f) { return f.dir_bits; },
+                      width_setter(&FixedFormat::dir_bits, "dir_bits"))
         .def_readwrite("mode", &FixedFormat::mode)
         .def_readonly_static("MIN_BITS", &FixedFormat::kMinBits)
         .def_readonly_static("MAX_BITS", &FixedFormat::kMaxBits)

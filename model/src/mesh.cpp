@@ -13,10 +13,12 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -67,11 +69,35 @@ void check_readable(const std::string& path) {
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": empty mesh (empty file)");
 }
 
+// A word of the input for a message: control and non-ASCII bytes as \xNN,
+// cut after 40 characters.
+std::string printable(std::string_view word) {
+    std::string out;
+    for (char ch : word.substr(0, 40)) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (c >= 0x20 && c < 0x7f) {
+            out.push_back(ch);
+        } else {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+        }
+    }
+    if (word.size() > 40) out += "...";
+    return out;
+}
+
 // ---------------------------------------------------------------------------
 // PLY structure check. Assimp 5.2's PLY reader loops forever on a header
-// without end_header and silently reads past the end of a truncated body
-// (zeros or garbage become vertices and faces), so the header and the body
-// layout are walked here first; the values themselves are left to Assimp.
+// without end_header, silently reads past the end of a truncated body
+// (zeros or garbage become vertices and faces), and walks every item of a
+// vertex or face element even when the element has no properties (about
+// 4e9 empty iterations for 'element face 4294967295'; a bad_alloc for an
+// 'edge' or 'material' element). So the header is parsed strictly here
+// (element and property lines exactly as the PLY format has them, nothing
+// after the count or the name, counts below 2^32 as Assimp stores them, no
+// element with items but no properties) and the body layout is walked; the
+// values themselves are left to Assimp.
 
 struct PlyProperty {
     int size = 0;        // bytes of a scalar, or of a list's items
@@ -80,6 +106,7 @@ struct PlyProperty {
 struct PlyElement {
     std::string name;
     std::uint64_t count = 0;
+    int line = 0;  // of the header, for messages
     std::vector<PlyProperty> props;
 };
 struct PlyHeader {
@@ -113,6 +140,10 @@ PlyHeader parse_ply_header(const std::string& data, const std::string& path) {
         std::istringstream ls(line);
         std::string kw;
         ls >> kw;
+        auto no_more_words = [&](const std::string& after) {
+            std::string extra;
+            if (ls >> extra) fail("unexpected '" + printable(extra) + "' after " + after);
+        };
         if (line_no == 1) {
             if (kw != "ply") fail("first line is not 'ply'");
         } else if (kw == "format") {
@@ -121,7 +152,15 @@ PlyHeader parse_ply_header(const std::string& data, const std::string& path) {
                 fail("unknown format '" + h.format + "'");
         } else if (kw == "element") {
             PlyElement e;
-            if (!(ls >> e.name >> e.count)) fail("malformed element line");
+            e.line = line_no;
+            std::string count;
+            if (!(ls >> e.name >> count)) fail("malformed element line (expected 'element NAME COUNT')");
+            const auto [ptr, ec] = std::from_chars(count.data(), count.data() + count.size(), e.count);
+            if (ec == std::errc::result_out_of_range || (ec == std::errc{} && e.count > 0xffffffffu))
+                fail("element '" + printable(e.name) + "': count " + printable(count) + " exceeds 4294967295");
+            if (ec != std::errc{} || ptr != count.data() + count.size())
+                fail("element '" + printable(e.name) + "': count '" + printable(count) + "' is not a whole number");
+            no_more_words("the count of element '" + printable(e.name) + "'");
             h.elements.push_back(e);
         } else if (kw == "property") {
             if (h.elements.empty()) fail("property before any element");
@@ -133,19 +172,26 @@ PlyHeader parse_ply_header(const std::string& data, const std::string& path) {
                 ls >> ct >> it;
                 p.count_size = ply_type_size(ct);
                 p.size = ply_type_size(it);
-                if (p.count_size == 0 || p.size == 0) fail("unknown list type '" + ct + " " + it + "'");
+                if (p.count_size == 0 || p.size == 0)
+                    fail("unknown list type '" + printable(ct) + " " + printable(it) + "'");
             } else {
                 p.size = ply_type_size(type);
-                if (p.size == 0) fail("unknown property type '" + type + "'");
+                if (p.size == 0) fail("unknown property type '" + printable(type) + "'");
             }
+            if (!(ls >> name)) fail("property without a name");
+            no_more_words("property '" + printable(name) + "'");
             h.elements.back().props.push_back(p);
         } else if (kw == "end_header") {
             break;
         } else if (kw != "comment" && kw != "obj_info" && !kw.empty()) {
-            fail("unknown keyword '" + kw + "'");
+            fail("unknown keyword '" + printable(kw) + "'");
         }
     }
     if (h.format.empty()) throw InputError(path + ": PLY header has no format line");
+    for (const PlyElement& e : h.elements)
+        if (e.count > 0 && e.props.empty())
+            throw InputError(path + ":" + std::to_string(e.line) + ": PLY header: element '" + printable(e.name) +
+                             "' has " + std::to_string(e.count) + " items but no properties");
     h.body = pos;
     return h;
 }
@@ -228,6 +274,88 @@ void check_ply_structure(const std::string& path) {
         walk_ply_ascii(data, h, path);
     else
         walk_ply_binary(data, h, path);
+}
+
+// ---------------------------------------------------------------------------
+// OBJ face index errors. Assimp reports a bad index of an 'f', 'l' or 'p'
+// line ("OBJ: vertex index out of range", "OBJ: Invalid face index.")
+// without its line, so after such a failure the file is scanned with
+// Assimp's rules to find it: a component that reads as 0 (or not as a
+// number) is invalid; a vertex index i > 0 must be at most the file's
+// vertex count, i < 0 counts back from the vertices read so far. Like
+// Assimp, only a 'v' line of 3, 4 (homogeneous) or 6 (with colour) numbers
+// counts as a vertex.
+
+struct ObjIndexProblem {
+    std::size_t line = 0;
+    std::string what;
+};
+
+std::optional<ObjIndexProblem> find_obj_index_problem(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<std::string> lines;
+    for (std::string l; std::getline(in, l);) lines.push_back(std::move(l));
+    auto is_blank = [](char c) { return c == ' ' || c == '\t' || c == '\r'; };
+    auto starts = [&](const std::string& l, char kw) {
+        std::size_t i = 0;
+        while (i < l.size() && is_blank(l[i])) ++i;
+        return i + 1 < l.size() && l[i] == kw && is_blank(l[i + 1]) ? i + 2 : std::string::npos;
+    };
+    auto is_vertex = [&](const std::string& l) {
+        const std::size_t pos = starts(l, 'v');
+        if (pos == std::string::npos) return false;
+        std::istringstream ws(l.substr(pos));
+        int words = 0;
+        for (std::string w; ws >> w;) ++words;
+        return words == 3 || words == 4 || words == 6;
+    };
+    long long total = 0;
+    for (const std::string& l : lines)
+        if (is_vertex(l)) ++total;
+    long long so_far = 0;
+    for (std::size_t n = 0; n < lines.size(); ++n) {
+        const std::string& l = lines[n];
+        if (starts(l, 'v') != std::string::npos) {
+            if (is_vertex(l)) ++so_far;
+            continue;
+        }
+        std::size_t pos = std::string::npos;
+        for (char kw : {'f', 'l', 'p'})
+            if (pos == std::string::npos) pos = starts(l, kw);
+        if (pos == std::string::npos) continue;
+        std::istringstream ws(l.substr(pos));
+        for (std::string word; ws >> word;) {
+            std::size_t start = 0;
+            for (int component = 0; start <= word.size(); ++component) {
+                const std::size_t slash = std::min(word.find('/', start), word.size());
+                const std::string part = word.substr(start, slash - start);
+                start = slash + 1;
+                if (part.empty()) continue;
+                const long long i = std::strtoll(part.c_str(), nullptr, 10);
+                if (i == 0) return ObjIndexProblem{n + 1, "index '" + printable(part) + "' is not a number or 0"};
+                if (component != 0) continue;
+                if (i > total)
+                    return ObjIndexProblem{n + 1, "vertex index " + std::to_string(i) + ", the file has " +
+                                                      std::to_string(total) + " vertices"};
+                if (i < 0 && so_far + i < 0)
+                    return ObjIndexProblem{n + 1, "vertex index " + std::to_string(i) + " with " +
+                                                      std::to_string(so_far) + " vertices before this line"};
+            }
+        }
+    }
+    return std::nullopt;
+}
+
+// Assimp's failure message, with the file's line when it is an OBJ face
+// index error that the scan above can place.
+std::string load_failure(const std::string& path, std::string reason) {
+    if (lower_extension(path) == ".obj" &&
+        (reason.find("index out of range") != std::string::npos || reason.find("Invalid face index") != std::string::npos))
+        if (const auto p = find_obj_index_problem(path)) {
+            if (!reason.empty() && reason.back() == '.') reason.pop_back();
+            return path + ":" + std::to_string(p->line) + ": cannot load mesh: " + reason + " (" + p->what + ")";
+        }
+    return path + ": cannot load mesh: " + reason;
 }
 
 std::string mesh_label(const aiScene& sc, unsigned mi) {
@@ -318,7 +446,7 @@ Mesh load_mesh_file(const std::string& path) {
     // Step 1: raw import, no post-processing, so bad input is reported before
     // anything else touches it.
     const aiScene* sc = imp.ReadFile(path, 0);
-    if (!sc) throw InputError(path + ": cannot load mesh: " + imp.GetErrorString());
+    if (!sc) throw InputError(load_failure(path, imp.GetErrorString()));
     check_raw(*sc, path);
     // Step 2: Triangulate splits an n-gon into n-2 triangles in place of the
     // polygon and keeps zero-area ones; JoinIdenticalVertices only renumbers

@@ -56,9 +56,29 @@ bool is_coordinate(int k) { return k < 3 || k >= 7; }
 // The "C" locale's white space (std::isspace is a slow library call).
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
 
+// A token for a message: a NUL byte is shown as \0, other control bytes as
+// \xNN, so the message stays one readable line.
+std::string printable(const char* tok, std::size_t n) {
+    std::string out;
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<unsigned char>(tok[i]);
+        if (c == 0) {
+            out += "\\0";
+        } else if (c < 0x20 || c == 0x7f) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\x%02x", c);
+            out += buf;
+        } else {
+            out.push_back(static_cast<char>(c));
+        }
+    }
+    return out;
+}
+
 // Parses one line (comment already cut). Returns false for a blank line.
 bool parse_line(std::string& line, const std::string& where, Query& q) {
     char* tokens[kFields + 1];
+    std::size_t lengths[kFields + 1];
     int count = 0;
     char* s = line.data();
     char* const end = s + line.size();
@@ -68,7 +88,10 @@ bool parse_line(std::string& line, const std::string& where, Query& q) {
         char* tok = s;
         while (s < end && !is_space(*s)) ++s;
         *s = '\0';  // s < end here, or s == end points at the string's own terminator
-        if (count <= kFields) tokens[count] = tok;
+        if (count <= kFields) {
+            tokens[count] = tok;
+            lengths[count] = std::size_t(s - tok);
+        }
         ++count;
         ++s;
     }
@@ -79,9 +102,11 @@ bool parse_line(std::string& line, const std::string& where, Query& q) {
     for (int k = 0; k < kFields; ++k) {
         char* stop = nullptr;
         const double v = std::strtod(tokens[k], &stop);
-        if (stop == tokens[k] || *stop != '\0')
+        // The token ends at tokens[k] + lengths[k]: a NUL byte inside it
+        // stops strtod early and must not pass for the token's end.
+        if (stop == tokens[k] || stop != tokens[k] + lengths[k])
             throw InputError(where + ": field " + std::to_string(k + 1) + " (" + kFieldNames[k] + "): cannot parse '" +
-                             tokens[k] + "' as a number");
+                             printable(tokens[k], lengths[k]) + "' as a number");
         set_field(q, k, to_float(v));
     }
     validate_query(q, where);

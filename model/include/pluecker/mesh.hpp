@@ -45,11 +45,16 @@ struct Mesh {
 // keep the file's face order. Degenerate and duplicate triangles are kept
 // (Assimp's FindDegenerates step is not run); point and line primitives are
 // skipped. A PLY file's header and body layout are checked before Assimp
-// reads it (Assimp 5.2 hangs on a missing end_header and reads garbage from
-// a truncated body). Throws InputError naming the file for: a missing file,
-// an unknown extension, a malformed or truncated PLY, an Assimp failure
-// (with Assimp's reason), an empty mesh, a non-finite coordinate (with the
-// vertex index) and an index out of range.
+// reads it (Assimp 5.2 hangs on a missing end_header or on a vertex or face
+// element without properties, and reads garbage from a truncated body): the
+// header lines must be exact ('element NAME COUNT' with a whole COUNT below
+// 2^32, 'property TYPE NAME', 'property list TYPE TYPE NAME', nothing
+// after), and an element with items must have properties. Throws
+// InputError naming the file for: a missing file, an unknown extension, a
+// malformed PLY header (with its line) or truncated PLY body, an Assimp
+// failure (with Assimp's reason; for an OBJ face index error also the line),
+// an empty mesh, a non-finite coordinate (with the vertex index) and an
+// index out of range.
 Mesh load_mesh_file(const std::string& path);
 
 // The Utah teapot: Newell's 32 bicubic Bezier patches, each tessellated into
