@@ -22,6 +22,7 @@
 #include "pluecker/kdtree.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/render.hpp"
+#include "pluecker/tool_args.hpp"
 #include "pluecker/traverse.hpp"
 
 #include <embree3/rtcore.h>
@@ -74,38 +75,21 @@ void usage() {
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw InputError("option " + a + " needs a value");
-            return argv[++i];
-        };
-        auto number = [&](long lo, long hi) {
-            const std::string v = value();
-            char* end = nullptr;
-            const long n = std::strtol(v.c_str(), &end, 10);
-            if (v.empty() || *end || n < lo || n > hi)
-                throw InputError("option " + a + ": '" + v + "' is not an integer in " + std::to_string(lo) + ".." +
-                                 std::to_string(hi));
-            return n;
-        };
-        if (a == "--size") o.size = static_cast<int>(number(1, 8192));
-        else if (a == "--random") o.random = static_cast<std::size_t>(number(0, 100000000));
-        else if (a == "--repeat") o.repeat = static_cast<int>(number(1, 100));
-        else if (a == "--examples") o.examples = static_cast<int>(number(0, 1000));
-        else if (a == "--synthetic") o.synthetic = static_cast<std::size_t>(number(0, 100000000));
-        else if (a == "--shared") o.shared = value();
-        else if (a == "--out") o.out = value();
-        else if (a == "--scenes") {
-            std::stringstream ss(value());
-            std::string item;
-            while (std::getline(ss, item, ','))
-                if (!item.empty()) o.scenes.push_back(item);
-        } else if (a == "--help" || a == "-h") {
+    ToolArgs args(argc, argv);
+    while (args.next()) {
+        if (args.is("--size")) o.size = static_cast<int>(args.integer(1, 8192));
+        else if (args.is("--random")) o.random = static_cast<std::size_t>(args.integer(0, 100000000));
+        else if (args.is("--repeat")) o.repeat = static_cast<int>(args.integer(1, 100));
+        else if (args.is("--examples")) o.examples = static_cast<int>(args.integer(0, 1000));
+        else if (args.is("--synthetic")) o.synthetic = static_cast<std::size_t>(args.integer(0, 100000000));
+        else if (args.is("--shared")) o.shared = args.value();
+        else if (args.is("--out")) o.out = args.value();
+        else if (args.is("--scenes")) o.scenes = args.list();
+        else if (args.is("--help") || args.is("-h")) {
             usage();
             std::exit(0);
         } else {
-            throw InputError("unknown option " + a);
+            args.unknown();
         }
     }
     return o;
