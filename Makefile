@@ -154,7 +154,7 @@ test-sanitize: setup
 	  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
 	  -DCMAKE_CXX_FLAGS="-fsanitize=float-cast-overflow" \
 	  > $(SANITIZE_BUILD).configure.log 2>&1 || { cat $(SANITIZE_BUILD).configure.log; exit 1; }; \
-	cmake --build $(SANITIZE_BUILD) -j$(JOBS) || exit 1; \
+	cmake --build $(SANITIZE_BUILD) -j$(JOBS) --target model_tests pluecker || exit 1; \
 	built=$$(date +%s); \
 	cd $(SANITIZE_BUILD) && \
 	ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1 \
