@@ -33,14 +33,20 @@
 //       whose input registers are the S1 registers of the operands and whose
 //       output register is the S2 register); in parallel |A_i| + |B_j| (in
 //       ones' complement form), origin test B_i >= 0, end test
+//   S2x MUL_ADD stages (0 when both multiplier operands fit 18 bits, i.e.
+//       COORD_BITS <= 17 and DIR_BITS <= 17; else 1 or 2): on ECP5 the
+//       wider products are summed from 18x18 partial products there
+//       (pluecker_mul); everything else is only delayed
 //   S3  combine: T_ij = B_j*D_i - A_i*D_j, margin M_ij
 //   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest)
 //   F   the AND of all tests is written into the output FIFO
 //
-// Latency: LATENCY = 6 cycles from input handshake to output handshake. A
-// query taken at rising edge k is in S0 after edge k, in S4 after edge
-// k + 4, in the FIFO (out_valid_o high) after edge k + 5, and is taken at
-// edge k + 6 at the earliest.
+// Latency: LATENCY = 6 + MUL_ADD cycles from input handshake to output
+// handshake (6 up to 17/17 bits; 7 when one of COORD_BITS, DIR_BITS is 18
+// or more, 8 when both are). With MUL_ADD = 0, a query taken at rising edge
+// k is in S0 after edge k, in S4 after edge k + 4, in the FIFO (out_valid_o
+// high) after edge k + 5, and is taken at edge k + 6 at the earliest; each
+// S2x stage adds one edge.
 // in_ready_o and out_valid_o are driven by flops only (no combinational path
 // from any input to any output).
 //
@@ -120,9 +126,12 @@ module pluecker_intersector #(
   // so |2T + M| < 2^(C+D+2): WP + 1 = C+D+3 signed bits hold it.
   localparam int WS = WP + 1;
 
+  // Multiplier operands wider than one 18x18 DSP operand (WA = C + 1,
+  // WDS = D + 1): each adds one registered adder stage (S2x) to pluecker_mul.
+  localparam int MUL_ADD = ((WA > 18) ? 1 : 0) + ((WDS > 18) ? 1 : 0);
   // Cycles from the input handshake to the earliest output handshake:
-  // S0..S4 and the FIFO write.
-  localparam int LATENCY = 6;
+  // S0..S4, S2x and the FIFO write.
+  localparam int LATENCY = 6 + MUL_ADD;
   // A power of two >= LATENCY + 2: full throughput with out_ready_i high.
   localparam int FIFO_DEPTH = 1 << $clog2(LATENCY + 2);
   // FIFO index bits and pointer bits (one extra bit tells full from empty).
@@ -136,6 +145,7 @@ module pluecker_intersector #(
   // Control: valid bits, credits, FIFO pointers (the only reset flops)
   // -------------------------------------------------------------------------
   logic v0_q, v1_q, v2_q, v3_q, v4_q;
+  wire v2x;  // v2_q after the S2x stages
   logic ready_q;
   logic [CW-1:0] credits_q, credits_d;
   logic [FIFO_PW-1:0] wr_ptr_q, rd_ptr_q;
@@ -164,7 +174,7 @@ module pluecker_intersector #(
       v0_q <= take;
       v1_q <= v0_q;
       v2_q <= v1_q;
-      v3_q <= v2_q;
+      v3_q <= v2x;
       v4_q <= v3_q;
       ready_q <= credits_d != '0;
       credits_q <= credits_d;
@@ -271,9 +281,9 @@ module pluecker_intersector #(
     localparam int J = (I + 1 + k % 2) % 3;
     // Operands from the S1 logic (a_d, b_d, dir0_q), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
-    pluecker_mul #(.WA(WA), .WB(WDS)) u_mul_b (
+    pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_b (
         .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
-    pluecker_mul #(.WA(WA), .WB(WDS)) u_mul_a (
+    pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_a (
         .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
     // A ^ sign(A) has a zero top bit: keep the low C bits.
     wire [WMAG-1:0] mag_a = a1_q[I][WMAG-1:0] ^ {WMAG{a1_q[I][WA-1]}};
@@ -282,7 +292,7 @@ module pluecker_intersector #(
   end
 
   logic [TAG_BITS-1:0] tag2_q;
-  wire [5:0][WP-1:0] pb2_q = pb_d;  // registered in pluecker_mul
+  wire [5:0][WP-1:0] pb2_q = pb_d;  // registered in pluecker_mul (after S2x)
   wire [5:0][WP-1:0] pa2_q = pa_d;
   logic [5:0][WM1-1:0] m12_q;
   logic [5:0][WDD-1:0] dd2_q;
@@ -298,6 +308,45 @@ module pluecker_intersector #(
   end
 
   // -------------------------------------------------------------------------
+  // S2x: MUL_ADD stages while pluecker_mul sums its partial products; the
+  // other S2 values only wait.
+  // -------------------------------------------------------------------------
+  localparam int SIDE_W = TAG_BITS + 6 * WM1 + 6 * WDD + 3 + 1;
+  wire [SIDE_W-1:0] side2 = {tag2_q, m12_q, dd2_q, sb2_q, ok2_q};
+  wire [SIDE_W-1:0] side2x;
+  logic [TAG_BITS-1:0] tag2x;
+  logic [5:0][WM1-1:0] m12x;
+  logic [5:0][WDD-1:0] dd2x;
+  logic [2:0] sb2x;
+  logic ok2x;
+`ifdef ASSERT_ON
+  wire [31:0] s2x_in_flight;  // valid bits in the S2x stages
+`endif
+
+  if (MUL_ADD == 0) begin : g_no_s2x
+    assign side2x = side2;
+    assign v2x = v2_q;
+`ifdef ASSERT_ON
+    assign s2x_in_flight = '0;
+`endif
+  end else begin : g_s2x
+    // Shift registers, stage s in bits [s*SIDE_W +: SIDE_W] and bit s.
+    logic [MUL_ADD*SIDE_W-1:0] side_q;
+    logic [MUL_ADD-1:0] v_q;  // control: reset
+    always_ff @(posedge clk_i) side_q <= (MUL_ADD * SIDE_W)'({side_q, side2});
+    always_ff @(posedge clk_i) begin
+      if (rst_i) v_q <= '0;
+      else v_q <= MUL_ADD'({v_q, v2_q});
+    end
+    assign side2x = side_q[(MUL_ADD-1)*SIDE_W+:SIDE_W];
+    assign v2x = v_q[MUL_ADD-1];
+`ifdef ASSERT_ON
+    assign s2x_in_flight = 32'(v_q[0]) + ((MUL_ADD > 1) ? 32'(v_q[MUL_ADD-1]) : 32'd0);
+`endif
+  end
+  assign {tag2x, m12x, dd2x, sb2x, ok2x} = side2x;
+
+  // -------------------------------------------------------------------------
   // S3: combine
   //   T_ij = B_j*D_i - A_i*D_j
   //   M_ij = |A_i| + |B_j| + D_i + D_j + 1 = m1_ij + (D_i + D_j + 1) + sign(B_j)
@@ -308,7 +357,7 @@ module pluecker_intersector #(
   for (genvar k = 0; k < 6; k++) begin : g_comb
     localparam int J = (k / 2 + 1 + k % 2) % 3;
     assign t_d[k] = pb2_q[k] - pa2_q[k];
-    assign m_d[k] = WM'(m12_q[k]) + WM'(dd2_q[k]) + WM'(sb2_q[J]);
+    assign m_d[k] = WM'(m12x[k]) + WM'(dd2x[k]) + WM'(sb2x[J]);
   end
 
   logic [TAG_BITS-1:0] tag3_q;
@@ -317,10 +366,10 @@ module pluecker_intersector #(
   logic ok3_q;
 
   always_ff @(posedge clk_i) begin
-    tag3_q <= tag2_q;
+    tag3_q <= tag2x;
     t3_q   <= t_d;
     m3_q   <= m_d;
-    ok3_q  <= ok2_q;
+    ok3_q  <= ok2x;
   end
 
   // -------------------------------------------------------------------------
@@ -401,6 +450,7 @@ module pluecker_intersector #(
       // depth: the FIFO never overflows, no slot is promised twice.
       a_credit_balance :
       assert (32'(credits_q) + 32'(v0_q) + 32'(v1_q) + 32'(v2_q) + 32'(v3_q) + 32'(v4_q) +
+              s2x_in_flight +
               32'(fifo_count) == FIFO_DEPTH);
       a_ready_credit :
       assert (!ready_q || credits_q != '0);

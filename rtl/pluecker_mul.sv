@@ -1,17 +1,33 @@
 // SPDX-License-Identifier: MIT
-// PROPOSAL (not used by rtl/ yet; see fpga/proposals/README.md).
-//
 // Registered signed multiply for the intersector's 12 products:
-//   p_o = a_i * b_i, STAGES = 2 (+1 with PIPELINE) clock edges after a_i, b_i.
+//   p_o = a_i * b_i, 2 + PIPELINE + ADD_STAGES clock edges after a_i, b_i.
 //
-// With PLUECKER_ECP5 defined (scripts/synth.py defines it for Yosys) and both
-// operands at most 18 bits, this is one MULT18X18D with its input registers
-// (REG_INPUTA/B_CLK) and output register (REG_OUTPUT_CLK) clocked, and the
-// internal pipeline register when PIPELINE = 1. Yosys 0.70's synth_ecp5 never
-// packs fabric registers into MULT18X18D (it maps `*` to a combinational
-// MULT18X18D), so without this the multiplier delay (3.1 ns at speed 8) sits
-// between two fabric flip-flops. Otherwise (simulation, lint, other targets,
-// or wider operands) the same registers around a generic `*`.
+// ADD_STAGES must be the number of operands wider than 18 bits (0, 1 or 2;
+// elaboration fails otherwise), so that the latency is a function of the
+// widths alone, the same on every target. Operands are at most 35 bits,
+// 53 together (the intersector needs at most 25 each).
+//
+// With PLUECKER_ECP5 defined (scripts/synth.py defines it for Yosys):
+//   - both operands at most 18 bits: one MULT18X18D with its input registers
+//     (REG_INPUTA/B_CLK) and output register (REG_OUTPUT_CLK) clocked, and the
+//     internal pipeline register when PIPELINE = 1. Yosys 0.70's synth_ecp5
+//     never packs fabric registers into MULT18X18D (it maps `*` to a
+//     combinational MULT18X18D), so without this the multiplier delay
+//     (3.1 ns at speed 8) sits between two fabric flip-flops.
+//   - a wider operand x is split into a signed high part x[W-1:17] and an
+//     unsigned low part {0, x[16:0]}, each an 18-bit signed DSP operand; every
+//     partial product is a MULT18X18D registered as above, and the partial
+//     products are summed in ADD_STAGES registered fabric stages of one
+//     adder each (so no path crosses a DSP and an adder):
+//       one operand split (x = xh*2^17 + xl, y whole):
+//         +1  p = xl*y + (xh*y << 17)
+//       both split:
+//         +1  c = {ah*bh, al*bl[33:0]} (al*bl < 2^34, so no add)
+//             x = ah*bl + al*bh
+//         +2  p = c + (x << 17)
+//     All sums are taken modulo 2^(WA+WB), which holds the exact product.
+// Otherwise (simulation, lint, other targets) the same number of registers
+// around a generic `*`: identical results and latency.
 //
 // nextpnr-ecp5 times the block by REG_INPUTA/B_CLK and REG_OUTPUT_CLK only;
 // it ignores REG_PIPELINE_CLK, so it neither credits nor checks the internal
@@ -22,62 +38,132 @@
 module pluecker_mul #(
     parameter int WA = 17,
     parameter int WB = 17,
-    parameter bit PIPELINE = 0
+    parameter bit PIPELINE = 0,
+    parameter int ADD_STAGES = 0
 ) (
     input  wire                    clk_i,
     input  wire signed [WA-1:0]    a_i,
     input  wire signed [WB-1:0]    b_i,
     output wire signed [WA+WB-1:0] p_o
 );
+  localparam int W = WA + WB;
+  localparam int SPLIT_A = (WA > 18) ? 1 : 0;
+  localparam int SPLIT_B = (WB > 18) ? 1 : 0;
+
+  if (ADD_STAGES != SPLIT_A + SPLIT_B) begin : g_bad_add_stages
+    $error("pluecker_mul: ADD_STAGES must equal the number of operands wider than 18 bits");
+  end
+  if (WA > 35 || WB > 35 || WA + WB > 53 || WA < 2 || WB < 2) begin : g_bad_width
+    $error("pluecker_mul: operand widths must be 2..35 bits, 53 bits together");
+  end
+
 `ifdef PLUECKER_ECP5
-  if (WA <= 18 && WB <= 18) begin : g_dsp
-    wire [17:0] a18 = 18'(a_i);
-    wire [17:0] b18 = 18'(b_i);
-    wire [35:0] p36;
-    MULT18X18D #(
-        .REG_INPUTA_CLK  ("CLK0"),
-        .REG_INPUTB_CLK  ("CLK0"),
-        .REG_PIPELINE_CLK(PIPELINE ? "CLK0" : "NONE"),
-        .REG_OUTPUT_CLK  ("CLK0"),
-        .GSR             ("DISABLED"),
-        .RESETMODE       ("SYNC")
-    ) u_mult (
-        .A0(a18[0]), .A1(a18[1]), .A2(a18[2]), .A3(a18[3]), .A4(a18[4]), .A5(a18[5]),
-        .A6(a18[6]), .A7(a18[7]), .A8(a18[8]), .A9(a18[9]), .A10(a18[10]), .A11(a18[11]),
-        .A12(a18[12]), .A13(a18[13]), .A14(a18[14]), .A15(a18[15]), .A16(a18[16]), .A17(a18[17]),
-        .B0(b18[0]), .B1(b18[1]), .B2(b18[2]), .B3(b18[3]), .B4(b18[4]), .B5(b18[5]),
-        .B6(b18[6]), .B7(b18[7]), .B8(b18[8]), .B9(b18[9]), .B10(b18[10]), .B11(b18[11]),
-        .B12(b18[12]), .B13(b18[13]), .B14(b18[14]), .B15(b18[15]), .B16(b18[16]), .B17(b18[17]),
-        .C0(1'b0), .C1(1'b0), .C2(1'b0), .C3(1'b0), .C4(1'b0), .C5(1'b0),
-        .C6(1'b0), .C7(1'b0), .C8(1'b0), .C9(1'b0), .C10(1'b0), .C11(1'b0),
-        .C12(1'b0), .C13(1'b0), .C14(1'b0), .C15(1'b0), .C16(1'b0), .C17(1'b0),
-        .SIGNEDA(1'b1), .SIGNEDB(1'b1), .SOURCEA(1'b0), .SOURCEB(1'b0),
-        .CLK0(clk_i), .CLK1(1'b0), .CLK2(1'b0), .CLK3(1'b0),
-        .CE0(1'b1), .CE1(1'b0), .CE2(1'b0), .CE3(1'b0),
-        .RST0(1'b0), .RST1(1'b0), .RST2(1'b0), .RST3(1'b0),
-        .P0(p36[0]), .P1(p36[1]), .P2(p36[2]), .P3(p36[3]), .P4(p36[4]), .P5(p36[5]),
-        .P6(p36[6]), .P7(p36[7]), .P8(p36[8]), .P9(p36[9]), .P10(p36[10]), .P11(p36[11]),
-        .P12(p36[12]), .P13(p36[13]), .P14(p36[14]), .P15(p36[15]), .P16(p36[16]), .P17(p36[17]),
-        .P18(p36[18]), .P19(p36[19]), .P20(p36[20]), .P21(p36[21]), .P22(p36[22]), .P23(p36[23]),
-        .P24(p36[24]), .P25(p36[25]), .P26(p36[26]), .P27(p36[27]), .P28(p36[28]), .P29(p36[29]),
-        .P30(p36[30]), .P31(p36[31]), .P32(p36[32]), .P33(p36[33]), .P34(p36[34]), .P35(p36[35])
-    );
-    assign p_o = p36[WA+WB-1:0];
-  end else begin : g_generic
+  // Operand parts, 18-bit signed each: [0] low (or the whole operand), [1]
+  // high (split operands only).
+  localparam int NA = 1 + SPLIT_A;
+  localparam int NB = 1 + SPLIT_B;
+  wire [1:0][17:0] a_part, b_part;
+  if (SPLIT_A != 0) begin : g_split_a
+    assign a_part[0] = {1'b0, a_i[16:0]};
+    assign a_part[1] = 18'($signed(a_i[WA-1:17]));
+  end else begin : g_whole_a
+    assign a_part[0] = 18'(a_i);
+    assign a_part[1] = '0;
+  end
+  if (SPLIT_B != 0) begin : g_split_b
+    assign b_part[0] = {1'b0, b_i[16:0]};
+    assign b_part[1] = 18'($signed(b_i[WB-1:17]));
+  end else begin : g_whole_b
+    assign b_part[0] = 18'(b_i);
+    assign b_part[1] = '0;
+  end
+
+  // pp[ia + 2*ib] = a_part[ia] * b_part[ib], registered inside the DSP.
+  wire [3:0][35:0] pp;
+  for (genvar k = 0; k < 4; k++) begin : g_dsp
+    localparam int IA = k % 2;
+    localparam int IB = k / 2;
+    if (IA < NA && IB < NB) begin : g_used
+      wire [17:0] a18 = a_part[IA];
+      wire [17:0] b18 = b_part[IB];
+      wire [35:0] p36;
+      MULT18X18D #(
+          .REG_INPUTA_CLK  ("CLK0"),
+          .REG_INPUTB_CLK  ("CLK0"),
+          .REG_PIPELINE_CLK(PIPELINE ? "CLK0" : "NONE"),
+          .REG_OUTPUT_CLK  ("CLK0"),
+          .GSR             ("DISABLED"),
+          .RESETMODE       ("SYNC")
+      ) u_mult (
+          .A0(a18[0]), .A1(a18[1]), .A2(a18[2]), .A3(a18[3]), .A4(a18[4]), .A5(a18[5]),
+          .A6(a18[6]), .A7(a18[7]), .A8(a18[8]), .A9(a18[9]), .A10(a18[10]), .A11(a18[11]),
+          .A12(a18[12]), .A13(a18[13]), .A14(a18[14]), .A15(a18[15]), .A16(a18[16]), .A17(a18[17]),
+          .B0(b18[0]), .B1(b18[1]), .B2(b18[2]), .B3(b18[3]), .B4(b18[4]), .B5(b18[5]),
+          .B6(b18[6]), .B7(b18[7]), .B8(b18[8]), .B9(b18[9]), .B10(b18[10]), .B11(b18[11]),
+          .B12(b18[12]), .B13(b18[13]), .B14(b18[14]), .B15(b18[15]), .B16(b18[16]), .B17(b18[17]),
+          .C0(1'b0), .C1(1'b0), .C2(1'b0), .C3(1'b0), .C4(1'b0), .C5(1'b0),
+          .C6(1'b0), .C7(1'b0), .C8(1'b0), .C9(1'b0), .C10(1'b0), .C11(1'b0),
+          .C12(1'b0), .C13(1'b0), .C14(1'b0), .C15(1'b0), .C16(1'b0), .C17(1'b0),
+          .SIGNEDA(1'b1), .SIGNEDB(1'b1), .SOURCEA(1'b0), .SOURCEB(1'b0),
+          .CLK0(clk_i), .CLK1(1'b0), .CLK2(1'b0), .CLK3(1'b0),
+          .CE0(1'b1), .CE1(1'b0), .CE2(1'b0), .CE3(1'b0),
+          .RST0(1'b0), .RST1(1'b0), .RST2(1'b0), .RST3(1'b0),
+          .P0(p36[0]), .P1(p36[1]), .P2(p36[2]), .P3(p36[3]), .P4(p36[4]), .P5(p36[5]),
+          .P6(p36[6]), .P7(p36[7]), .P8(p36[8]), .P9(p36[9]), .P10(p36[10]), .P11(p36[11]),
+          .P12(p36[12]), .P13(p36[13]), .P14(p36[14]), .P15(p36[15]), .P16(p36[16]), .P17(p36[17]),
+          .P18(p36[18]), .P19(p36[19]), .P20(p36[20]), .P21(p36[21]), .P22(p36[22]), .P23(p36[23]),
+          .P24(p36[24]), .P25(p36[25]), .P26(p36[26]), .P27(p36[27]), .P28(p36[28]), .P29(p36[29]),
+          .P30(p36[30]), .P31(p36[31]), .P32(p36[32]), .P33(p36[33]), .P34(p36[34]), .P35(p36[35])
+      );
+      assign pp[k] = p36;
+    end else begin : g_unused
+      assign pp[k] = '0;
+    end
+  end
+
+  if (SPLIT_A == 0 && SPLIT_B == 0) begin : g_one
+    assign p_o = pp[0][W-1:0];
+  end else if (SPLIT_A == 0 || SPLIT_B == 0) begin : g_two
+    // Low part times the whole operand (signed), and the high part's product
+    // at weight 2^17.
+    localparam int KH = SPLIT_A ? 1 : 2;
+    wire [W-1:0] lo = W'($signed(pp[0]));
+    logic [W-1:0] p_q;
+    always_ff @(posedge clk_i) p_q <= {lo[W-1:17] + pp[KH][W-18:0], lo[16:0]};
+    assign p_o = p_q;
+  end else begin : g_four
+    logic [W-1:0] c_q, p_q;
+    logic [W-18:0] x_q;
+    always_ff @(posedge clk_i) begin
+      c_q <= {pp[3][W-35:0], pp[0][33:0]};
+      x_q <= pp[1][W-18:0] + pp[2][W-18:0];
+      p_q <= {c_q[W-1:17] + x_q, c_q[16:0]};
+    end
+    assign p_o = p_q;
+  end
 `else
   begin : g_generic
-`endif
     logic signed [WA-1:0] a_q;
     logic signed [WB-1:0] b_q;
-    logic signed [WA+WB-1:0] m_q, p_q;
+    logic signed [W-1:0] m_q, p_q;
     always_ff @(posedge clk_i) begin
       a_q <= a_i;
       b_q <= b_i;
       m_q <= a_q * b_q;
       p_q <= m_q;
     end
-    assign p_o = PIPELINE ? p_q : m_q;
+    wire signed [W-1:0] p_reg = PIPELINE ? p_q : m_q;
+    // The ECP5 build's adder stages, as plain delay.
+    if (ADD_STAGES == 0) begin : g_nodelay
+      assign p_o = p_reg;
+    end else begin : g_delay
+      // Stage s in bits [s*W +: W].
+      logic [ADD_STAGES*W-1:0] d_q;
+      always_ff @(posedge clk_i) d_q <= (ADD_STAGES * W)'({d_q, p_reg});
+      assign p_o = d_q[(ADD_STAGES-1)*W+:W];
+    end
   end
+`endif
 
 endmodule
 
