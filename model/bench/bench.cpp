@@ -10,6 +10,7 @@
 #include "pluecker/bvh.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/render.hpp"
+#include "pluecker/tool_args.hpp"
 #include "pluecker/traverse.hpp"
 
 #include <glm/geometric.hpp>
@@ -18,6 +19,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
@@ -48,7 +50,8 @@ void usage() {
     std::printf(
         "usage: pluecker_bench [--scene S] [--size N] [--random N] [--repeat N]\n"
         "  --scene S    scene spec (teapot | spheres | sphere:N | FILE)  [sphere:1000000]\n"
-        "  --size N     camera rays: N x N view of the scene, 8x8 tiles   [1024]\n"
+        "  --size N     camera rays: N x N view of the scene, 8x8 tiles\n"
+        "               in Morton order                                   [1024]\n"
         "  --random N   random rays, origins and directions in the cube   [1000000]\n"
         "  --repeat N   time each run N times, report the best            [1]\n"
         "  --build B    median | sah | both                               [both]\n"
@@ -61,47 +64,31 @@ void usage() {
 
 Options parse(int argc, char** argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw InputError("option " + a + " needs a value");
-            return argv[++i];
-        };
-        auto number = [&](long lo, long hi) {
-            const std::string v = value();
-            char* end = nullptr;
-            const long n = std::strtol(v.c_str(), &end, 10);
-            if (v.empty() || *end || n < lo || n > hi)
-                throw InputError("option " + a + ": '" + v + "' is not an integer in " + std::to_string(lo) + ".." +
-                                 std::to_string(hi));
-            return n;
-        };
-        if (a == "--scene") o.scene = value();
-        else if (a == "--size") o.size = static_cast<int>(number(1, 16384));
-        else if (a == "--random") o.random = static_cast<std::size_t>(number(1, 1L << 30));
-        else if (a == "--repeat") o.repeat = static_cast<int>(number(1, 100));
-        else if (a == "--build") {
-            const std::string v = value();
+    ToolArgs args(argc, argv);
+    while (args.next()) {
+        if (args.is("--scene")) o.scene = args.value();
+        else if (args.is("--size")) o.size = static_cast<int>(args.integer(1, 16384));
+        else if (args.is("--random")) o.random = static_cast<std::size_t>(args.integer(1, 1L << 30));
+        else if (args.is("--repeat")) o.repeat = static_cast<int>(args.integer(1, 100));
+        else if (args.is("--build")) {
+            const std::string v = args.value();
             o.builds = v == "both" ? std::vector<BuildMethod>{BuildMethod::Median, BuildMethod::Sah}
                                    : std::vector<BuildMethod>{parse_build_method(v)};
-        }
-        else if (a == "--config") {
-            const std::string v = value();
+        } else if (args.is("--config")) {
+            const std::string v = args.value();
             o.configs.clear();
             for (int c = 0; c < 5; ++c)
                 if (v == "all" || v == kConfigNames[c]) o.configs.push_back(c);
             if (o.configs.empty()) throw InputError("option --config: unknown configuration '" + v + "'");
-        }
-        else if (a == "--bins") o.bins = static_cast<int>(number(2, 64));
-        else if (a == "--fixed") {
-            o.fixed_size = static_cast<int>(number(0, 16384));
+        } else if (args.is("--bins")) o.bins = static_cast<int>(args.integer(2, 64));
+        else if (args.is("--fixed")) {
+            o.fixed_size = static_cast<int>(args.integer(0, 16384));
             o.fixed = o.fixed_size > 0;
-        }
-        else if (a == "--help" || a == "-h") {
+        } else if (args.is("--help") || args.is("-h")) {
             usage();
             std::exit(0);
         } else {
-            throw InputError("unknown option " + a);
+            args.unknown();
         }
     }
     return o;
@@ -116,16 +103,30 @@ std::vector<Ray> camera_rays(const Mesh& m, int side) {
     std::vector<Ray> rays;
     rays.reserve(static_cast<std::size_t>(side) * side);
     // 8x8 pixel tiles, as a tiled renderer issues them: neighbouring rays
-    // share the upper BVH levels in the cache.
+    // share the upper BVH levels in the cache. The tiles are taken in Morton
+    // (Z) order of their tile coordinates, so that a tile's neighbours above
+    // and below are also traced soon after it. The rays are those of a
+    // row-major order; only their order differs.
     constexpr int kTile = 8;
-    for (int ty = 0; ty < side; ty += kTile)
-        for (int tx = 0; tx < side; tx += kTile)
-            for (int y = ty; y < std::min(ty + kTile, side); ++y)
-                for (int x = tx; x < std::min(tx + kTile, side); ++x) {
-                    const float sx = (2.0f * (x + 0.5f) / side - 1.0f) * th;
-                    const float sy = (1.0f - 2.0f * (y + 0.5f) / side) * th;
-                    rays.push_back(Ray{c.eye, glm::normalize(sx * u + sy * v - w), kInf});
-                }
+    const int tiles_per_side = (side + kTile - 1) / kTile;
+    std::vector<std::pair<std::uint64_t, int>> tiles;  // (Morton key, tile index)
+    tiles.reserve(static_cast<std::size_t>(tiles_per_side) * tiles_per_side);
+    for (int k = 0; k < tiles_per_side * tiles_per_side; ++k) {
+        const auto tx = static_cast<std::uint64_t>(k % tiles_per_side), ty = static_cast<std::uint64_t>(k / tiles_per_side);
+        std::uint64_t key = 0;
+        for (int b = 0; b < 16; ++b) key |= (tx >> b & 1) << (2 * b) | (ty >> b & 1) << (2 * b + 1);
+        tiles.emplace_back(key, k);
+    }
+    std::sort(tiles.begin(), tiles.end());
+    for (const auto& [key, k] : tiles) {
+        const int tx = k % tiles_per_side * kTile, ty = k / tiles_per_side * kTile;
+        for (int y = ty; y < std::min(ty + kTile, side); ++y)
+            for (int x = tx; x < std::min(tx + kTile, side); ++x) {
+                const float sx = (2.0f * (x + 0.5f) / side - 1.0f) * th;
+                const float sy = (1.0f - 2.0f * (y + 0.5f) / side) * th;
+                rays.push_back(Ray{c.eye, glm::normalize(sx * u + sy * v - w), kInf});
+            }
+    }
     return rays;
 }
 
