@@ -31,7 +31,8 @@
 //       D_i + D_j + 1
 //   S2  12 multipliers B_j*D_i, A_i*D_j (pluecker_mul: on ECP5 a MULT18X18D
 //       whose input registers are the S1 registers of the operands and whose
-//       output register is the S2 register); in parallel |A_i| + |B_j| (in
+//       output register is the S2 register; or, by MUL_STYLE, the fabric
+//       multiplier pluecker_mul_lut with the same two register stages); in parallel |A_i| + |B_j| (in
 //       ones' complement form), origin test B_i >= 0, end test
 //   S2x MUL_ADD stages (0 when both multiplier operands fit 18 bits, i.e.
 //       COORD_BITS <= 17 and DIR_BITS <= 17; else 1 or 2): on ECP5 the
@@ -61,7 +62,11 @@ module pluecker_intersector #(
     parameter int COORD_BITS = 16,
     parameter int DIR_BITS = 16,
     parameter int TAG_BITS = 16,
-    parameter bit CONSERVATIVE = 1  // 1: conservative margin (never misses); 0: 'nearest' (no margin)
+    parameter bit CONSERVATIVE = 1,  // 1: conservative margin (never misses); 0: 'nearest' (no margin)
+    // Multipliers: "dsp" = pluecker_mul (on ECP5 MULT18X18D blocks),
+    // "lut" = pluecker_mul_lut (fabric only), "auto" = "lut" when both
+    // COORD_BITS and DIR_BITS are at most MUL_LUT_MAX_BITS, else "dsp".
+    parameter MUL_STYLE = "auto"
 ) (
     input wire clk_i,
     input wire rst_i,  // synchronous, active high; resets control flops only
@@ -96,6 +101,13 @@ module pluecker_intersector #(
   if (TAG_BITS < 1) begin : g_bad_tag_bits
     $error("pluecker_intersector: parameter TAG_BITS must be at least 1");
   end
+  // MUL_STYLE compared as a 32-bit pattern (a string parameter of up to four
+  // characters, without width warnings).
+  localparam logic [31:0] MUL_STYLE_S = 32'(MUL_STYLE);
+  if (MUL_STYLE_S != 32'("auto") && MUL_STYLE_S != 32'("dsp") && MUL_STYLE_S != 32'("lut"))
+  begin : g_bad_mul_style
+    $error("pluecker_intersector: parameter MUL_STYLE must be auto, dsp or lut");
+  end
 
   // -------------------------------------------------------------------------
   // Widths (C = COORD_BITS, D = DIR_BITS). The bounds hold for every value
@@ -125,6 +137,20 @@ module pluecker_intersector #(
   // 2*T + M: |2T| <= 4(2^C - 1)(2^D - 1) and 0 <= M < 2^(C+2) + 2^(D+2) - 4,
   // so |2T + M| < 2^(C+D+2): WP + 1 = C+D+3 signed bits hold it.
   localparam int WS = WP + 1;
+
+  // Multiplier style. On the LFE5U-85F (156 MULT18X18D, 83,640 LUT4 slots)
+  // twelve DSP multipliers bound a chip to 13 units at any width; fabric
+  // multipliers make a unit LUT-bound: more units, each slower. Measured
+  // (scripts/synth.py, 1 seed, speed 6, units x Fmax): 6/6 55 x 128 MHz
+  // against 13 x 222 MHz, 8/8 38 x 133 against 13 x 204, 10/10 28 x 96
+  // against 13 x 209 (a tie), 12/12 22 x 95 against 13 x 200. "auto" takes
+  // fabric up to 9 bits (where MUL_ADD is always 0).
+  localparam int MUL_LUT_MAX_BITS = 9;
+  localparam bit MUL_LUT = MUL_STYLE_S == 32'("lut") ||
+      (MUL_STYLE_S == 32'("auto") && C <= MUL_LUT_MAX_BITS && D <= MUL_LUT_MAX_BITS);
+  if (MUL_STYLE_S == 32'("lut") && MUL_ADD != 0) begin : g_bad_lut_width
+    $error("pluecker_intersector: MUL_STYLE \"lut\" supports COORD_BITS and DIR_BITS up to 17");
+  end
 
   // Multiplier operands wider than one 18x18 DSP operand (WA = C + 1,
   // WDS = D + 1): each adds one registered adder stage (S2x) to pluecker_mul.
@@ -281,10 +307,18 @@ module pluecker_intersector #(
     localparam int J = (I + 1 + k % 2) % 3;
     // Operands from the S1 logic (a_d, b_d, dir0_q), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
-    pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_b (
-        .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
-    pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_a (
-        .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
+    // Same ports and latency in both styles.
+    if (MUL_LUT) begin : g_lut
+      pluecker_mul_lut #(.WA(WA), .WB(WDS)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
+      pluecker_mul_lut #(.WA(WA), .WB(WDS)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
+    end else begin : g_dsp
+      pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
+      pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
+    end
     // A ^ sign(A) has a zero top bit: keep the low C bits.
     wire [WMAG-1:0] mag_a = a1_q[I][WMAG-1:0] ^ {WMAG{a1_q[I][WA-1]}};
     wire [WMAG-1:0] mag_b = b1_q[J][WMAG-1:0] ^ {WMAG{b1_q[J][WA-1]}};

