@@ -42,39 +42,34 @@ fail=0
 note() { printf '%-60s %s\n' "$1" "$2"; }
 
 # --- 1. Verilator -Wall ------------------------------------------------------
+lint_clean() {  # <what> <verilator arguments...>: no warning, no error
+    local what=$1
+    shift
+    if verilator --lint-only -Wall "$@" --top-module "$TOP" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/v.log" 2>&1 \
+        && ! grep -qE '%(Warning|Error)' "$LOG/v.log"; then
+        note "$what" ok
+    else
+        note "$what" FAIL
+        cat "$LOG/v.log"
+        fail=1
+    fi
+}
 for pair in "6 6" "10 12" "16 16" "24 24" "6 24" "24 6"; do
     read -r c d <<< "$pair"
     for cons in 1 0; do
         for asrt in "" "-DASSERT_ON --assert"; do
-            what="verilator -Wall C=$c D=$d CONSERVATIVE=$cons ${asrt:+ASSERT_ON}"
             # shellcheck disable=SC2086
-            if verilator --lint-only -Wall $asrt -GCOORD_BITS="$c" -GDIR_BITS="$d" -GCONSERVATIVE="$cons" \
-                --top-module "$TOP" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/v.log" 2>&1 \
-                && ! grep -qE '%(Warning|Error)' "$LOG/v.log"; then
-                note "$what" ok
-            else
-                note "$what" FAIL
-                cat "$LOG/v.log"
-                fail=1
-            fi
+            lint_clean "verilator -Wall C=$c D=$d CONSERVATIVE=$cons ${asrt:+ASSERT_ON}" \
+                $asrt -GCOORD_BITS="$c" -GDIR_BITS="$d" -GCONSERVATIVE="$cons"
         done
     done
 done
-
 # Both multiplier styles at a narrow and a wide width.
 for style in lut dsp; do
     for pair in "6 6" "16 16"; do
         read -r c d <<< "$pair"
-        what="verilator -Wall C=$c D=$d MUL_STYLE=$style ASSERT_ON"
-        if verilator --lint-only -Wall -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" \
-            -GMUL_STYLE="\"$style\"" --top-module "$TOP" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/v.log" 2>&1 \
-            && ! grep -qE '%(Warning|Error)' "$LOG/v.log"; then
-            note "$what" ok
-        else
-            note "$what" FAIL
-            cat "$LOG/v.log"
-            fail=1
-        fi
+        lint_clean "verilator -Wall C=$c D=$d MUL_STYLE=$style ASSERT_ON" \
+            -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GMUL_STYLE="\"$style\""
     done
 done
 
