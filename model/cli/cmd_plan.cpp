@@ -97,13 +97,18 @@ void print_hardware(const std::filesystem::path& synth_dir, const WidthPair& w, 
     const long mult = get_long(u, "MULT18X18D");
     long comb = -1;
     if (u.contains("placed") && u["placed"].contains("TRELLIS_COMB")) comb = u["placed"]["TRELLIS_COMB"].get<long>();
-    if (cap && mult > 0 && comb > 0 && cap->contains("MULT18X18D") && cap->contains("TRELLIS_COMB")) {
+    if (cap && comb > 0 && cap->contains("MULT18X18D") && cap->contains("TRELLIS_COMB")) {
         const long mult_av = (*cap)["MULT18X18D"].value("available", 0L);
         const long comb_av = (*cap)["TRELLIS_COMB"].value("available", 0L);
-        const long by_mult = mult_av / mult, by_comb = comb_av / comb;
-        os << "  units per device (upper bound, no routing margin): " << std::min(by_mult, by_comb) << " (MULT18X18D "
-           << mult_av << "/" << mult << " = " << by_mult << ", LUT4 slots " << comb_av << "/" << comb << " = "
-           << by_comb << "; capacities from nextpnr's report)\n";
+        const long by_comb = comb_av / comb;
+        os << "  units per device (upper bound, no routing margin): ";
+        if (mult > 0) {
+            const long by_mult = mult_av / mult;
+            os << std::min(by_mult, by_comb) << " (MULT18X18D " << mult_av << "/" << mult << " = " << by_mult << ", ";
+        } else {
+            os << by_comb << " (fabric multipliers, no MULT18X18D; ";
+        }
+        os << "LUT4 slots " << comb_av << "/" << comb << " = " << by_comb << "; capacities from nextpnr's report)\n";
     }
 }
 
