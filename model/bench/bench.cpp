@@ -10,6 +10,7 @@
 #include "pluecker/bvh.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/render.hpp"
+#include "pluecker/rng.hpp"
 #include "pluecker/tool_args.hpp"
 #include "pluecker/traverse.hpp"
 
@@ -131,14 +132,8 @@ std::vector<Ray> camera_rays(const Mesh& m, int side) {
 }
 
 std::vector<Ray> random_rays(std::size_t n, std::uint64_t seed) {
-    std::uint64_t s = seed;
-    auto next = [&s] {
-        std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    };
-    auto uni = [&next] { return -1.0f + 2.0f * static_cast<float>(next() >> 40) * 0x1p-24f; };
+    Rng rng(seed);
+    auto uni = [&rng] { return rng.sym(); };
     std::vector<Ray> rays(n);
     for (Ray& r : rays) {
         r.o = Vec3(uni(), uni(), uni());
@@ -149,14 +144,6 @@ std::vector<Ray> random_rays(std::size_t n, std::uint64_t seed) {
         r.tmax = kInf;
     }
     return rays;
-}
-
-// CPU time of this thread: the figures stay per-thread figures on a machine
-// shared with other jobs.
-double thread_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
 // SAH cost of a tree relative to its root box, with unit costs: the sum
@@ -337,13 +324,5 @@ int bench(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return bench(parse(argc, argv));
-    } catch (const pluecker::InputError& e) {
-        std::fprintf(stderr, "pluecker_bench: error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pluecker_bench: internal error: %s\n", e.what());
-        return 1;
-    }
+    return pluecker::run_tool("pluecker_bench", [&] { return bench(parse(argc, argv)); });
 }

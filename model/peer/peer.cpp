@@ -461,13 +461,5 @@ int peer_main(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return peer_main(parse(argc, argv));
-    } catch (const pluecker::InputError& e) {
-        std::fprintf(stderr, "pluecker_peer: error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pluecker_peer: internal error: %s\n", e.what());
-        return 1;
-    }
+    return pluecker::run_tool("pluecker_peer", [&] { return peer_main(parse(argc, argv)); });
 }

@@ -578,13 +578,5 @@ int tables_main(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return tables_main(parse(argc, argv));
-    } catch (const pluecker::InputError& e) {
-        std::fprintf(stderr, "pluecker_tables: error: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pluecker_tables: internal error: %s\n", e.what());
-        return 1;
-    }
+    return pluecker::run_tool("pluecker_tables", [&] { return tables_main(parse(argc, argv)); });
 }

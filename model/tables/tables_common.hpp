@@ -1,18 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Shared by pluecker_tables and the Embree peer (model/peer/): the scene
 // list, the synthetic scene, the rays of a render (recorded through a
-// Tracer wrapper), random rays and per-thread CPU time.
+// Tracer wrapper) and random rays.
 #pragma once
 
 #include "pluecker/mesh.hpp"
 #include "pluecker/render.hpp"
+#include "pluecker/rng.hpp"
+#include "pluecker/tool_args.hpp"
 #include "pluecker/traverse.hpp"
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cstdint>
-#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -20,22 +21,6 @@
 #include <vector>
 
 namespace pluecker::tables {
-
-// CPU time of the calling thread: figures stay per-thread figures on a
-// machine shared with other jobs.
-inline double thread_seconds() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-inline std::uint64_t splitmix(std::uint64_t& s) {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-inline float uniform01(std::uint64_t& s) { return static_cast<float>(splitmix(s) >> 40) * 0x1p-24f; }
 
 // The synthetic scene: a field of UV spheres (make_uv_sphere, 4,000
 // triangles each) with seeded random radii in [0.02, 0.08] and centres in
@@ -50,11 +35,11 @@ inline Mesh make_synthetic(std::size_t triangles) {
     m.materials.push_back(Material{MaterialKind::Diffuse, Vec3(0.75f, 0.7f, 0.6f), 1.5f});
     m.vertices.reserve(count * unit.vertices.size());
     m.triangles.reserve(count * unit.triangles.size());
-    std::uint64_t seed = 2005;
+    Rng rng(2005);
     for (std::size_t i = 0; i < count; ++i) {
-        const float r = 0.02f + 0.06f * uniform01(seed);
+        const float r = 0.02f + 0.06f * rng.unit();
         Vec3 c;
-        for (int k = 0; k < 3; ++k) c[k] = (2.0f * uniform01(seed) - 1.0f) * (1.0f - r);
+        for (int k = 0; k < 3; ++k) c[k] = (2.0f * rng.unit() - 1.0f) * (1.0f - r);
         const auto base = static_cast<std::uint32_t>(m.vertices.size());
         for (const Vec3& v : unit.vertices) m.vertices.push_back(c + r * v);
         for (const auto& t : unit.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
@@ -118,12 +103,13 @@ private:
 // Random rays: origins uniform in [-1,1]^3, directions uniform in the unit
 // ball (rejection) normalised, unbounded.
 inline std::vector<Ray> random_rays(std::size_t n, std::uint64_t seed) {
+    Rng rng(seed);
     std::vector<Ray> rays(n);
     for (Ray& r : rays) {
-        for (int k = 0; k < 3; ++k) r.o[k] = 2.0f * uniform01(seed) - 1.0f;
+        for (int k = 0; k < 3; ++k) r.o[k] = 2.0f * rng.unit() - 1.0f;
         Vec3 d;
         do {
-            for (int k = 0; k < 3; ++k) d[k] = 2.0f * uniform01(seed) - 1.0f;
+            for (int k = 0; k < 3; ++k) d[k] = 2.0f * rng.unit() - 1.0f;
         } while (glm::length(d) < 0.05f || glm::length(d) > 1.0f);
         r.d = glm::normalize(d);
         r.tmax = kInf;

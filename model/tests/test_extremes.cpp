@@ -24,6 +24,7 @@
 #include "pluecker/fixed.hpp"
 #include "pluecker/query.hpp"
 #include "pluecker/querygen.hpp"
+#include "pluecker/rng.hpp"
 
 #include <gtest/gtest.h>
 
@@ -148,25 +149,6 @@ TEST(Extremes, EveryQuerygenFamilyAtEveryWidth) {
 // ---------------------------------------------------------------------------
 // Transformed queries
 // ---------------------------------------------------------------------------
-// SplitMix64 (Steele, Lea & Flood, OOPSLA 2014), as in querygen.cpp.
-class Rng {
-public:
-    explicit Rng(std::uint64_t seed) : s_(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    std::uint32_t below(std::uint32_t n) { return static_cast<std::uint32_t>(next() % n); }
-    bool coin() { return (next() >> 63) != 0; }
-    float unit() { return static_cast<float>(next() >> 40) * 0x1p-24f; }
-    float sign() { return coin() ? -1.0f : 1.0f; }
-
-private:
-    std::uint64_t s_;
-};
-
 enum Transform { kUnitCoords, kDenormalDir, kSignedZero, kTinyDir, kHugeDir, kTinyBox, kZeroLength, kCombined, kTransforms };
 const char* kTransformNames[kTransforms] = {"+-1 and 1ulp", "denormal dir", "signed zero", "dir x 1e-30",
                                             "dir x 1e30",   "tiny box",     "zero length", "combined"};

@@ -6,6 +6,7 @@
 #include "pluecker/mesh.hpp"
 #include "pluecker/querygen.hpp"
 #include "pluecker/render.hpp"
+#include "pluecker/rng.hpp"
 #include "pluecker/traverse.hpp"
 #include "pluecker/triangle.hpp"
 
@@ -24,19 +25,10 @@
 namespace pluecker {
 namespace {
 
-// Portable seeded generator (splitmix64).
-struct Rng {
-    std::uint64_t s;
-    explicit Rng(std::uint64_t seed) : s(seed) {}
-    std::uint64_t next() {
-        std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
-    }
-    float uniform(float lo, float hi) {
-        return lo + (hi - lo) * static_cast<float>(next() >> 40) * 0x1p-24f;
-    }
+// Seeded rays and points from the project's generator (pluecker/rng.hpp).
+struct RayRng : Rng {
+    using Rng::Rng;
+    float uniform(float lo, float hi) { return lo + (hi - lo) * unit(); }
     Vec3 in_cube(float h) { return Vec3(uniform(-h, h), uniform(-h, h), uniform(-h, h)); }
     Vec3 direction() {
         for (;;) {
@@ -50,7 +42,7 @@ struct Rng {
 // Random rays in and around the cube (some aimed at a vertex, some finite
 // segments, some axis-parallel) and camera rays of the default view.
 std::vector<Ray> make_rays(const Mesh& m, std::size_t n_random, int camera_side, std::uint64_t seed) {
-    Rng rng(seed);
+    RayRng rng(seed);
     std::vector<Ray> rays;
     for (std::size_t i = 0; i < n_random; ++i) {
         Ray r;
@@ -276,7 +268,7 @@ TEST(Traverse, DeepBvhUsesTheHeapStack) {
     Accel accel(m, bvh);
     accel.quantize(FixedFormat{});
     const auto tracer = make_tracer(accel, BoxTestKind::Smits, ChildOrder::Dsa);
-    Rng rng(5);
+    RayRng rng(5);
     for (int i = 0; i < 200; ++i) {
         // Along -x and +x through all the triangles: the whole chain is on the stack.
         Ray r{Vec3(i % 2 ? 1.2f : -1.2f, rng.uniform(-0.3f, 0.3f), rng.uniform(-0.3f, 0.3f)),
@@ -315,7 +307,7 @@ TEST(Triangle, WatertightOnSharedEdgesAndClosedMeshes) {
     // Rays through points of a closed sphere from inside always hit: no ray
     // slips between triangles, even through shared edges and vertices.
     const Mesh m = make_scene("sphere:2000");
-    Rng rng(7);
+    RayRng rng(7);
     std::size_t misses = 0;
     for (int i = 0; i < 3000; ++i) {
         Ray r;

@@ -1,11 +1,15 @@
 // SPDX-License-Identifier: MIT
-// Option reading for the benchmark programs (pluecker_bench, pluecker_tables,
-// pluecker_peer): `--name value` pairs, integers range-checked, errors as
-// InputError naming the option. The `pluecker` CLI has its own parser
-// (model/cli/args.hpp) with subcommands and help texts.
+// Shared by the benchmark programs (pluecker_bench, pluecker_tables,
+// pluecker_peer): option reading (`--name value` pairs, integers
+// range-checked, errors as InputError naming the option), per-thread CPU
+// time, and main()'s mapping of errors to exit statuses. The `pluecker` CLI
+// has its own parser (model/cli/args.hpp) with subcommands and help texts.
 #pragma once
 
+#include <cstdio>
 #include <cstdlib>
+#include <ctime>
+#include <exception>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -60,5 +64,28 @@ private:
     int i_ = 0;
     std::string name_;
 };
+
+// CPU time of the calling thread: figures stay per-thread figures on a
+// machine shared with other jobs.
+inline double thread_seconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Runs a tool's body: bad input (InputError) is exit status 2 with
+// "<tool>: error: ...", anything else 1 with "<tool>: internal error: ...".
+template <class Body>
+int run_tool(const char* tool, Body&& body) {
+    try {
+        return body();
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s: error: %s\n", tool, e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: internal error: %s\n", tool, e.what());
+        return 1;
+    }
+}
 
 }  // namespace pluecker
