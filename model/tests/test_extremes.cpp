@@ -26,6 +26,8 @@
 #include "pluecker/querygen.hpp"
 #include "pluecker/rng.hpp"
 
+#include "fixed_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -40,10 +42,9 @@
 namespace pluecker {
 namespace {
 
-bool long_run() {
-    const char* e = std::getenv("PLUECKER_LONG");
-    return e && *e && std::string(e) != "0";
-}
+using test_support::format;
+using test_support::long_run;
+using test_support::Tally;
 
 std::size_t query_count() { return long_run() ? 1000000 : 100000; }
 
@@ -56,30 +57,6 @@ std::vector<std::pair<int, int>> width_grid() {
         for (auto p : {std::pair{7, 23}, std::pair{23, 7}, std::pair{11, 13}}) g.push_back(p);
     return g;
 }
-
-FixedFormat format(int c, int d) {
-    FixedFormat f;
-    f.coord_bits = c;
-    f.dir_bits = d;
-    f.mode = FixedMode::Conservative;
-    return f;
-}
-
-struct Tally {
-    std::size_t queries = 0, real_hits = 0, false_misses = 0, false_hits = 0;
-    void add(bool exact, bool fixed) {
-        ++queries;
-        real_hits += exact;
-        false_misses += exact && !fixed;
-        false_hits += !exact && fixed;
-    }
-    void add(const Tally& t) {
-        queries += t.queries;
-        real_hits += t.real_hits;
-        false_misses += t.false_misses;
-        false_hits += t.false_hits;
-    }
-};
 
 // Runs every query at every width pair; per-group tallies (a group is a
 // family or a transform) summed over the widths, and per-width tallies.

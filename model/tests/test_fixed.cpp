@@ -5,6 +5,8 @@
 #include "pluecker/fixed.hpp"
 #include "pluecker/querygen.hpp"
 
+#include "fixed_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,19 +16,9 @@
 namespace pluecker {
 namespace {
 
-struct Tally {
-    std::size_t queries = 0, real_hits = 0, false_misses = 0, false_hits = 0;
-    void add(bool exact, bool fixed) {
-        ++queries;
-        real_hits += exact;
-        false_misses += exact && !fixed;
-        false_hits += !exact && fixed;
-    }
-    double false_hit_rate() const {
-        const std::size_t misses = queries - real_hits;
-        return misses ? double(false_hits) / double(misses) : 0.0;
-    }
-};
+using test_support::format;
+using test_support::long_run;
+using test_support::Tally;
 
 Tally run(const std::vector<Query>& qs, const std::vector<char>& exact, const FixedFormat& f) {
     Tally t;
@@ -38,14 +30,6 @@ std::vector<char> exact_answers(const std::vector<Query>& qs) {
     std::vector<char> out(qs.size());
     for (std::size_t i = 0; i < qs.size(); ++i) out[i] = exact_hit(qs[i].ray, qs[i].box);
     return out;
-}
-
-FixedFormat format(int c, int d, FixedMode m = FixedMode::Conservative) {
-    FixedFormat f;
-    f.coord_bits = c;
-    f.dir_bits = d;
-    f.mode = m;
-    return f;
 }
 
 TEST(FixedFormat, RejectsIllegalWidths) {

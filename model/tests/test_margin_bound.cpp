@@ -38,6 +38,8 @@
 #include "pluecker/fixed.hpp"
 #include "pluecker/querygen.hpp"
 
+#include "fixed_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -54,20 +56,11 @@
 namespace pluecker {
 namespace {
 
+using test_support::format;
+using test_support::long_run;
+using test_support::Tally;
+
 using i64 = std::int64_t;
-
-bool long_run() {
-    const char* e = std::getenv("PLUECKER_LONG");
-    return e && *e && std::string(e) != "0";
-}
-
-FixedFormat format(int c, int d) {
-    FixedFormat f;
-    f.coord_bits = c;
-    f.dir_bits = d;
-    f.mode = FixedMode::Conservative;
-    return f;
-}
 
 // ---------------------------------------------------------------------------
 // The datapath of fixed.hpp, term by term (so the margin can be varied). It
