@@ -104,27 +104,24 @@ inline void check_epsilon_fixed(float epsilon, const FixedFormat& f) {
     }
 }
 
-// The camera in the float arithmetic the renderer uses (render.cpp's
-// Shader): w = normalize(eye - look), u = normalize(cross(up, w)),
-// v = cross(w, u). Every one must be finite and non-zero, else the rays are
-// NaN; each failure names the flags that cause it.
+// The camera frame the renderer uses (camera_basis): w = normalize(eye -
+// look), u = normalize(cross(up, w)), v = cross(w, u). Every one must be
+// finite and non-zero, else the rays are NaN; each failure names the flags
+// that cause it.
 inline void check_camera(const Camera& c) {
     auto finite = [](const Vec3& x) { return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z); };
     auto nonzero = [](const Vec3& x) { return x.x != 0.0f || x.y != 0.0f || x.z != 0.0f; };
     const Vec3 diff = c.eye - c.look;
     if (!nonzero(diff)) throw InputError("options --eye and --look: must differ");
-    const Vec3 w = glm::normalize(diff);
+    const auto [w, side, u, v] = camera_basis(c);  // the renderer's own frame
     if (!finite(diff) || !finite(w) || !nonzero(w))
         throw InputError("options --eye and --look: the view direction eye - look cannot be normalised in "
                          "float arithmetic (its length must lie between about 1e-18 and 1e18)");
-    const Vec3 side = glm::cross(c.up, w);
     if (finite(side) && !nonzero(side)) throw InputError("option --up: parallel to the view direction");
-    const Vec3 u = glm::normalize(side);
     if (!finite(side) || !finite(u) || !nonzero(u))
         throw InputError("option --up: cross(up, view direction) cannot be normalised in float arithmetic "
                          "(|up| must lie between about 1e-18 and 1e18, and up must not be nearly parallel to "
                          "the view direction)");
-    const Vec3 v = glm::cross(w, u);
     if (!finite(v) || !nonzero(v)) throw InputError("options --eye, --look and --up: no valid camera basis");
 }
 

@@ -64,10 +64,17 @@ Camera default_camera(const Mesh& m) {
     return cam;
 }
 
+CameraBasis camera_basis(const Camera& c) {
+    CameraBasis b;
+    b.w = glm::normalize(c.eye - c.look);
+    b.side = glm::cross(c.up, b.w);
+    b.u = glm::normalize(b.side);
+    b.v = glm::cross(b.w, b.u);
+    return b;
+}
+
 std::vector<Light> default_lights(const Camera& c, int count) {
-    const Vec3 w = glm::normalize(c.eye - c.look);
-    const Vec3 u = glm::normalize(glm::cross(c.up, w));
-    const Vec3 v = glm::cross(w, u);
+    const auto [w, side, u, v] = camera_basis(c);
     const float dist = glm::length(c.eye - c.look);
     std::vector<Light> lights;
     // Key light above and to the right of the camera, fill light low left.
@@ -114,9 +121,10 @@ struct Shader {
     Shader(const RenderScene& s, const RenderOptions& o) : scene(s), opts(o) {
         cam = o.camera ? *o.camera : default_camera(s.mesh);
         lights = o.lights.empty() ? default_lights(cam, o.light_count) : o.lights;
-        w = glm::normalize(cam.eye - cam.look);
-        u = glm::normalize(glm::cross(cam.up, w));
-        v = glm::cross(w, u);
+        const CameraBasis b = camera_basis(cam);
+        w = b.w;
+        u = b.u;
+        v = b.v;
         tan_half = std::tan(glm::radians(cam.fov_deg) * 0.5f);
         aspect = static_cast<float>(o.width) / static_cast<float>(o.height);
     }

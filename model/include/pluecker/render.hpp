@@ -52,6 +52,15 @@ struct Camera {
     float fov_deg = 40.0f;  // vertical field of view
 };
 
+// The camera's frame: w points from the look-at point to the eye, u to the
+// right, v up. `side` is cross(up, w) before normalising (zero when up is
+// parallel to the view). Degenerate cameras give NaN or zero vectors; the
+// CLI rejects them before rendering (cli/render_setup.hpp).
+struct CameraBasis {
+    Vec3 w, side, u, v;
+};
+CameraBasis camera_basis(const Camera& c);
+
 struct Light {
     Vec3 position;
     Vec3 color;
