@@ -109,6 +109,17 @@ struct TraversalStats {
 // per-thread heap stack.
 inline constexpr int kMaxStack = 256;
 
+// The traversal stack: `local` (kMaxStack entries) when the tree is no
+// deeper, else a per-thread buffer grown to the tree's depth.
+template <class Entry>
+Entry* traversal_stack(Entry* local, int depth) {
+    if (depth <= kMaxStack) [[likely]]
+        return local;
+    thread_local std::vector<Entry> deep;
+    if (deep.size() < static_cast<std::size_t>(depth)) deep.resize(static_cast<std::size_t>(depth));
+    return deep.data();
+}
+
 // ---------------------------------------------------------------------------
 // The layout of the float traversal kernels (smits and pluecker): the two
 // children of an interior node in one 64-byte record, their boxes as one
@@ -486,12 +497,7 @@ Hit traverse_class(const Accel& a, const Policy& test, const Ray& ray, Traversal
     Hit best;
     best.t = ray.tmax;
     Entry local[kMaxStack];
-    Entry* stack = local;
-    if (a.depth > kMaxStack) [[unlikely]] {
-        thread_local std::vector<Entry> deep;
-        if (deep.size() < static_cast<std::size_t>(a.depth)) deep.resize(static_cast<std::size_t>(a.depth));
-        stack = deep.data();
-    }
+    Entry* const stack = traversal_stack(local, a.depth);
     int sp = 0;
     float tn0 = 0.0f, tn1 = 0.0f;
     // Counters in locals: the compiler keeps them in registers.
@@ -627,12 +633,7 @@ Hit traverse_pairs(const Accel& a, const Policy& test, const Ray& ray, Traversal
     Hit best;
     best.t = ray.tmax;
     Entry local[kMaxStack];
-    Entry* stack = local;
-    if (a.depth > kMaxStack) [[unlikely]] {
-        thread_local std::vector<Entry> deep;
-        if (deep.size() < static_cast<std::size_t>(a.depth)) deep.resize(static_cast<std::size_t>(a.depth));
-        stack = deep.data();
-    }
+    Entry* const stack = traversal_stack(local, a.depth);
     int sp = 0;
     // Counters in registers; box tests = 1 (the root) + 2 per interior node
     // visited, taken from the visits and the leaf visits at the end.
