@@ -66,10 +66,12 @@ test-tb: build
 # Benchmarks (print figures; not tests): the software model (build, traversal
 # of every configuration, fixed point against float), the Verilator harness
 # (SIM_N queries at COORD_BITS/DIR_BITS) and the cocotb bench for comparison.
+# Software timings are the best of BENCH_REPEAT runs (the host is shared).
 BENCH_COCOTB_N ?= 20000
+BENCH_REPEAT ?= 3
 
 bench: build
-	$(BUILD)/pluecker_bench
+	$(BUILD)/pluecker_bench --repeat $(BENCH_REPEAT)
 	@$(MAKE) --no-print-directory sim-bench
 	$(ENV) python scripts/cocotb_bench.py --n $(BENCH_COCOTB_N) --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
 	  --py-dir $(BUILD)
