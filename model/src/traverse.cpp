@@ -80,7 +80,7 @@ T* alloc_records(std::size_t n) {
     void* p = std::aligned_alloc(align, bytes);
     if (!p) throw std::bad_alloc();
 #if defined(MADV_HUGEPAGE)
-    if (align == kHuge && !std::getenv("NOHUGE")) madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
+    if (align == kHuge) madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
 #endif
     return static_cast<T*>(p);
 }
