@@ -16,16 +16,14 @@
 
 #include "pluecker/mesh.hpp"
 
+#include "records.hpp"
+
 #include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
-#include <new>
-
-#include <sys/mman.h>
 
 // The tree must not depend on the target: no fused multiply-adds in the
 // areas and costs (GCC contracts by default in GNU mode, and aarch64 or
@@ -463,40 +461,6 @@ struct Builder {
     }
 };
 
-// Frees the prim array (trivially destructible records).
-struct PrimStore {
-    void operator()(Prim* p) const { std::free(p); }
-};
-
-// Raw storage for n prims, 2 MiB aligned and advised for transparent huge
-// pages when large: far fewer page faults on first touch.
-Prim* alloc_prims(std::size_t n) {
-    constexpr std::size_t kHuge = std::size_t{2} << 20;
-    std::size_t bytes = n * sizeof(Prim);
-    const std::size_t align = bytes >= kHuge ? kHuge : alignof(Prim);
-    bytes = (bytes + align - 1) / align * align;
-    void* p = std::aligned_alloc(align, bytes);
-    if (!p) throw std::bad_alloc();
-#if defined(MADV_HUGEPAGE)
-    if (align == kHuge) madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
-#endif
-    return static_cast<Prim*>(p);
-}
-
-// Advises the whole 2 MiB pages inside [p, p + bytes) for transparent huge
-// pages (storage reserved but not yet touched, such as the node vector's).
-void advise_huge(const void* p, std::size_t bytes) {
-#if defined(MADV_HUGEPAGE)
-    constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
-    const auto lo = (reinterpret_cast<std::uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
-    const auto hi = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(kHuge - 1);
-    if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice only
-#else
-    (void)p;
-    (void)bytes;
-#endif
-}
-
 std::string where_tri(std::size_t i) { return "build_bvh: triangle " + std::to_string(i); }
 
 // Bounds of one triangle, checked: indices in range, vertices finite.
@@ -576,7 +540,7 @@ Bvh build_bvh(std::span<const Vec3> vertices, std::span<const std::array<std::ui
     Bvh bvh;
     bvh.tri_order.resize(n);
     // Raw storage, each record constructed once below (no default fill).
-    std::unique_ptr<Prim[], PrimStore> prims(alloc_prims(n));
+    std::unique_ptr<Prim[], FreeRecords> prims(alloc_records<Prim>(n));  // trivially destructible
     VBox box, cent;
     for (std::size_t i = 0; i < n; ++i) {
         std::construct_at(&prims[i], Prim{tri_bounds(vertices, triangles[i], i)});

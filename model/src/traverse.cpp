@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "pluecker/traverse.hpp"
 
-#include <sys/mman.h>
+#include "records.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -64,28 +64,6 @@ std::string config_name(BoxTestKind t, ChildOrder o) {
 
 // ---------------------------------------------------------------------------
 // Accel
-
-namespace {
-
-// Raw storage for n records of T, 64-byte aligned; from 2 MiB on, 2 MiB
-// aligned and advised for transparent huge pages (a BVH of a million
-// triangles spans tens of MiB: with 4 KiB pages nearly every node an
-// incoherent ray reaches is a TLB miss too).
-template <class T>
-T* alloc_records(std::size_t n) {
-    constexpr std::size_t kHuge = std::size_t{2} << 20;
-    std::size_t bytes = std::max<std::size_t>(n, 1) * sizeof(T);
-    const std::size_t align = bytes >= kHuge ? kHuge : 64;
-    bytes = (bytes + align - 1) / align * align;
-    void* p = std::aligned_alloc(align, bytes);
-    if (!p) throw std::bad_alloc();
-#if defined(MADV_HUGEPAGE)
-    if (align == kHuge) madvise(p, bytes, MADV_HUGEPAGE);  // advice only: failure is harmless
-#endif
-    return static_cast<T*>(p);
-}
-
-}  // namespace
 
 Accel::Accel(const Mesh& mesh, const Bvh& bvh) {
     if (bvh.nodes.empty()) throw InputError("traversal: empty BVH");
