@@ -49,15 +49,10 @@ using namespace pluecker;
 using namespace pluecker::tables;
 using nlohmann::json;
 
-struct Options {
-    int size = 1024;
+struct Options : RunOptions {
+    Options() : RunOptions(1024, 2, "out/peer") {}
     std::size_t random = 1000000;
-    int repeat = 2;
     int examples = 5;
-    std::size_t synthetic = 4000000;
-    std::string shared = "../shared/scenes";
-    std::string out = "out/peer";
-    std::vector<std::string> scenes;
 };
 
 void usage() {
@@ -77,14 +72,9 @@ Options parse(int argc, char** argv) {
     Options o;
     ToolArgs args(argc, argv);
     while (args.next()) {
-        if (args.is("--size")) o.size = static_cast<int>(args.integer(1, 8192));
-        else if (args.is("--random")) o.random = static_cast<std::size_t>(args.integer(0, 100000000));
-        else if (args.is("--repeat")) o.repeat = static_cast<int>(args.integer(1, 100));
+        if (take_run_option(args, o)) continue;
+        if (args.is("--random")) o.random = static_cast<std::size_t>(args.integer(0, 100000000));
         else if (args.is("--examples")) o.examples = static_cast<int>(args.integer(0, 1000));
-        else if (args.is("--synthetic")) o.synthetic = static_cast<std::size_t>(args.integer(0, 100000000));
-        else if (args.is("--shared")) o.shared = args.value();
-        else if (args.is("--out")) o.out = args.value();
-        else if (args.is("--scenes")) o.scenes = args.list();
         else if (args.is("--help") || args.is("-h")) {
             usage();
             std::exit(0);
@@ -439,13 +429,7 @@ int peer_main(const Options& o) {
         one.triangles = {{0, 1, 2}};
         EmbreeEngine warm(device, one, RTC_BUILD_QUALITY_MEDIUM);
     }
-    std::vector<SceneSpec> specs;
-    if (o.scenes.empty()) {
-        specs = default_scenes(o.shared, o.synthetic);
-    } else {
-        for (const std::string& s : o.scenes)
-            specs.push_back({s.rfind("synthetic:", 0) == 0 ? "synthetic" : std::filesystem::path(s).filename().string(), s});
-    }
+    const std::vector<SceneSpec> specs = run_scenes(o);
     std::printf("Embree %d.%d.%d (robust scene flag, one thread) against this project's traversal\n",
                 RTC_VERSION_MAJOR, RTC_VERSION_MINOR, RTC_VERSION_PATCH);
     json all;

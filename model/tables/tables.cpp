@@ -76,14 +76,7 @@ const ReportFigures kReport;
 // ---------------------------------------------------------------------------
 // Options
 
-struct Options {
-    int size = 512;
-    int repeat = 3;
-    std::size_t synthetic = 4000000;
-    std::string shared = "../shared/scenes";
-    std::string out = "out/tables";
-    std::vector<std::string> scenes;  // empty: default_scenes()
-};
+using Options = RunOptions;
 
 void usage() {
     std::printf(
@@ -98,16 +91,11 @@ void usage() {
 }
 
 Options parse(int argc, char** argv) {
-    Options o;
+    Options o(512, 3, "out/tables");
     ToolArgs args(argc, argv);
     while (args.next()) {
-        if (args.is("--size")) o.size = static_cast<int>(args.integer(1, 8192));
-        else if (args.is("--repeat")) o.repeat = static_cast<int>(args.integer(1, 100));
-        else if (args.is("--synthetic")) o.synthetic = static_cast<std::size_t>(args.integer(0, 100000000));
-        else if (args.is("--shared")) o.shared = args.value();
-        else if (args.is("--out")) o.out = args.value();
-        else if (args.is("--scenes")) o.scenes = args.list();
-        else if (args.is("--help") || args.is("-h")) {
+        if (take_run_option(args, o)) continue;
+        if (args.is("--help") || args.is("-h")) {
             usage();
             std::exit(0);
         } else {
@@ -533,16 +521,7 @@ json to_json(const Options& o, const std::vector<SceneResult>& all) {
 
 int tables_main(const Options& o) {
     const Progress progress;
-    std::vector<SceneSpec> specs;
-    if (o.scenes.empty()) {
-        specs = default_scenes(o.shared, o.synthetic);
-    } else {
-        for (const std::string& s : o.scenes) {
-            std::string label = std::filesystem::path(s).filename().string();
-            if (s.rfind("synthetic:", 0) == 0) label = "synthetic";
-            specs.push_back({label, s});
-        }
-    }
+    const std::vector<SceneSpec> specs = run_scenes(o);
     std::string list;
     for (const auto& s : specs) list += (list.empty() ? "" : ", ") + s.label;
     progress("scenes: " + list + "; " + std::to_string(o.size) + "x" + std::to_string(o.size) + ", best of " +

@@ -18,6 +18,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pluecker::tables {
@@ -64,6 +65,41 @@ inline std::vector<SceneSpec> default_scenes(const std::string& shared_dir, std:
     }
     if (synthetic > 0) s.push_back({"synthetic", "synthetic:" + std::to_string(synthetic)});
     return s;
+}
+
+// The options pluecker_tables and pluecker_peer share; each tool sets its
+// own size, repeat and out defaults.
+struct RunOptions {
+    RunOptions(int size_, int repeat_, std::string out_) : size(size_), repeat(repeat_), out(std::move(out_)) {}
+    int size;                 // --size N: renders N x N
+    int repeat;               // --repeat N: best of N timings
+    std::string out;          // --out DIR
+    std::size_t synthetic = 4000000;          // --synthetic N (0: none)
+    std::string shared = "../shared/scenes";  // --shared DIR
+    std::vector<std::string> scenes;          // --scenes LIST; empty: default_scenes()
+};
+
+// Takes the current option of `args` when it is one of RunOptions'; false
+// when it is not (the tool's own options, or unknown).
+inline bool take_run_option(ToolArgs& args, RunOptions& o) {
+    if (args.is("--size")) o.size = static_cast<int>(args.integer(1, 8192));
+    else if (args.is("--repeat")) o.repeat = static_cast<int>(args.integer(1, 100));
+    else if (args.is("--synthetic")) o.synthetic = static_cast<std::size_t>(args.integer(0, 100000000));
+    else if (args.is("--shared")) o.shared = args.value();
+    else if (args.is("--out")) o.out = args.value();
+    else if (args.is("--scenes")) o.scenes = args.list();
+    else return false;
+    return true;
+}
+
+// The scenes to run: those of --scenes, labelled by file name ("synthetic"
+// for synthetic:N), else default_scenes.
+inline std::vector<SceneSpec> run_scenes(const RunOptions& o) {
+    if (o.scenes.empty()) return default_scenes(o.shared, o.synthetic);
+    std::vector<SceneSpec> specs;
+    for (const std::string& s : o.scenes)
+        specs.push_back({s.rfind("synthetic:", 0) == 0 ? "synthetic" : std::filesystem::path(s).filename().string(), s});
+    return specs;
 }
 
 inline Mesh load_scene(const SceneSpec& s) {
