@@ -73,6 +73,22 @@ inline TriRay tri_setup(const Ray& r) {
     return t;
 }
 
+// The last step of both triangle tests below: with det = u + v + w != 0
+// and tt = the scaled distance, a hit when t = tt / det lies in [0, tmax];
+// then t and the barycentrics b1 = v / det, b2 = w / det are set.
+[[gnu::always_inline]] inline bool tri_finish(float det, float tt, float v, float w, float tmax, float& t, float& b1,
+                                              float& b2) {
+    // t >= 0 iff tt and det share a sign.
+    if ((det < 0.0f && tt > 0.0f) || (det > 0.0f && tt < 0.0f)) return false;
+    const float rcp = 1.0f / det;
+    const float th = tt * rcp;
+    if (!(th <= tmax)) return false;
+    t = th;
+    b1 = v * rcp;
+    b2 = w * rcp;
+    return true;
+}
+
 // Returns true for a hit with 0 <= t <= tmax; then t, b1, b2 are set.
 // (Plain arrays, not glm's operator[], whose bounds assert is live in -O2
 // builds without NDEBUG.)
@@ -103,15 +119,7 @@ inline TriRay tri_setup(const Ray& r) {
     const float bz = r.sz * b[r.kz];
     const float cz = r.sz * c[r.kz];
     const float tt = u * az + v * bz + w * cz;
-    // t >= 0 iff tt and det share a sign.
-    if ((det < 0.0f && tt > 0.0f) || (det > 0.0f && tt < 0.0f)) return false;
-    const float rcp = 1.0f / det;
-    const float th = tt * rcp;
-    if (!(th <= tmax)) return false;
-    t = th;
-    b1 = v * rcp;
-    b2 = w * rcp;
-    return true;
+    return tri_finish(det, tt, v, w, tmax, t, b1, b2);
 }
 
 // A triangle stored for traversal: vertices and the mesh triangle id.
@@ -161,15 +169,7 @@ template <int KZ, bool SWAP>
     if (det == 0.0f) return false;
     const Float4 p = uvw * (splat4(r.sz) * Z);  // {u*az, v*bz, w*cz}
     const float tt = p[0] + p[1] + p[2];
-    // t >= 0 iff tt and det share a sign.
-    if ((det < 0.0f && tt > 0.0f) || (det > 0.0f && tt < 0.0f)) return false;
-    const float rcp = 1.0f / det;
-    const float th = tt * rcp;
-    if (!(th <= tmax)) return false;
-    t = th;
-    b1 = v * rcp;
-    b2 = w * rcp;
-    return true;
+    return tri_finish(det, tt, v, w, tmax, t, b1, b2);
 }
 
 }  // namespace pluecker
