@@ -1,14 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Shared by the fixed-point test suites (test_fixed, test_extremes,
-// test_margin_bound): the long-run switch, a format from two widths, and the
-// tally of fixed-point answers against exact ones.
+// test_margin_bound): the long-run switch, a format from two widths, the
+// tally of fixed-point answers against exact ones, and the box and ray
+// lattices of the exhaustive domains.
 #pragma once
 
 #include "pluecker/fixed.hpp"
+#include "pluecker/geometry.hpp"
 
 #include <cstddef>
 #include <cstdlib>
+#include <span>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pluecker::test_support {
 
@@ -47,5 +52,46 @@ struct Tally {
         return misses ? double(false_hits) / double(misses) : 0.0;
     }
 };
+
+// Every box whose planes on each axis are two of `planes` (lo index <= hi
+// index), the x slab outermost, then y, then z.
+inline std::vector<Box> lattice_boxes(std::span<const float> planes) {
+    std::vector<std::pair<float, float>> slabs;
+    for (std::size_t l = 0; l < planes.size(); ++l)
+        for (std::size_t h = l; h < planes.size(); ++h) slabs.emplace_back(planes[l], planes[h]);
+    std::vector<Box> boxes;
+    for (auto [lx, hx] : slabs)
+        for (auto [ly, hy] : slabs)
+            for (auto [lz, hz] : slabs) {
+                Box b;
+                b.lo = Vec3(lx, ly, lz);
+                b.hi = Vec3(hx, hy, hz);
+                boxes.push_back(b);
+            }
+    return boxes;
+}
+
+// Calls visit(ray) for every ray with origin coordinates from `coords`,
+// direction components from `dirs` (not all zero) and tmax from `tmaxes`;
+// nested in the order ox, oy, oz, dx, dy, dz, tmax.
+template <class Visit>
+void for_each_lattice_ray(std::span<const float> coords, std::span<const float> dirs, std::span<const float> tmaxes,
+                          Visit&& visit) {
+    for (float ox : coords)
+        for (float oy : coords)
+            for (float oz : coords)
+                for (float dx : dirs)
+                    for (float dy : dirs)
+                        for (float dz : dirs) {
+                            if (dx == 0 && dy == 0 && dz == 0) continue;
+                            for (float tm : tmaxes) {
+                                Ray r;
+                                r.o = Vec3(ox, oy, oz);
+                                r.d = Vec3(dx, dy, dz);
+                                r.tmax = tm;
+                                visit(r);
+                            }
+                        }
+}
 
 }  // namespace pluecker::test_support

@@ -16,7 +16,9 @@
 namespace pluecker {
 namespace {
 
+using test_support::for_each_lattice_ray;
 using test_support::format;
+using test_support::lattice_boxes;
 using test_support::long_run;
 using test_support::Tally;
 
@@ -155,42 +157,19 @@ TEST(FixedVsExact, Exhaustive6x6ConstrainedDomain) {
     const float coords[] = {-2.5f * u, -1.0f * u, -0.53f * u, 0.0f, 0.47f * u, 1.0f * u, 1.99f * u};
     const float dirs[] = {-1.0f, -1.0f / 3.0f, 0.0f, 0.25f, 1.0f};
     const float tmaxes[] = {kInf, 0.06f};
-    std::vector<Box> boxes;
-    for (int lx = 0; lx < 3; ++lx)
-        for (int hx = lx; hx < 3; ++hx)
-            for (int ly = 0; ly < 3; ++ly)
-                for (int hy = ly; hy < 3; ++hy)
-                    for (int lz = 0; lz < 3; ++lz)
-                        for (int hz = lz; hz < 3; ++hz) {
-                            Box b;
-                            b.lo = Vec3(planes[lx], planes[ly], planes[lz]);
-                            b.hi = Vec3(planes[hx], planes[hy], planes[hz]);
-                            boxes.push_back(b);
-                        }
+    const std::vector<Box> boxes = lattice_boxes(planes);
     std::vector<FixedBox> qboxes;
     for (const Box& b : boxes) qboxes.push_back(fixed_quantize_box(b, f));
     Tally t;
-    for (float ox : coords)
-        for (float oy : coords)
-            for (float oz : coords)
-                for (float dx : dirs)
-                    for (float dy : dirs)
-                        for (float dz : dirs) {
-                            if (dx == 0 && dy == 0 && dz == 0) continue;
-                            for (float tm : tmaxes) {
-                                Ray r;
-                                r.o = Vec3(ox, oy, oz);
-                                r.d = Vec3(dx, dy, dz);
-                                r.tmax = tm;
-                                const FixedRay fr = fixed_setup_ray(r, f);
-                                for (std::size_t k = 0; k < boxes.size(); ++k) {
-                                    const bool e = exact_hit(r, boxes[k]);
-                                    const bool h = fixed_hit(fr, qboxes[k], f);
-                                    t.add(e, h);
-                                    if (e && !h) ADD_FAILURE() << "false miss";
-                                }
-                            }
-                        }
+    for_each_lattice_ray(coords, dirs, tmaxes, [&](const Ray& r) {
+        const FixedRay fr = fixed_setup_ray(r, f);
+        for (std::size_t k = 0; k < boxes.size(); ++k) {
+            const bool e = exact_hit(r, boxes[k]);
+            const bool h = fixed_hit(fr, qboxes[k], f);
+            t.add(e, h);
+            if (e && !h) ADD_FAILURE() << "false miss";
+        }
+    });
     std::printf("[ fixed exhaustive 6/6 ] %zu queries, %zu real hits, false misses %zu, false hits %zu (%.2f%% of "
                 "misses)\n",
                 t.queries, t.real_hits, t.false_misses, t.false_hits, 100.0 * t.false_hit_rate());

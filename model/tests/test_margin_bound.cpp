@@ -56,7 +56,9 @@
 namespace pluecker {
 namespace {
 
+using test_support::for_each_lattice_ray;
 using test_support::format;
+using test_support::lattice_boxes;
 using test_support::long_run;
 using test_support::Tally;
 
@@ -517,40 +519,19 @@ void exhaustive_float_domain(int c, int d, bool big) {
                                                              0.2f, 0.5f + 1.0f / 64.0f, 1.0f}
                                         : std::vector<float>{-1.0f, -1.0f / 3.0f, -0.0f, 0.2f, 0.5f + 1.0f / 64.0f, 1.0f};
     const std::vector<float> tmaxes = big ? std::vector<float>{kInf, 0.07f} : std::vector<float>{kInf};
-    std::vector<Box> boxes;
-    std::vector<std::pair<float, float>> slabs;
-    for (std::size_t l = 0; l < planes.size(); ++l)
-        for (std::size_t h = l; h < planes.size(); ++h) slabs.emplace_back(planes[l], planes[h]);
-    for (auto [lx, hx] : slabs)
-        for (auto [ly, hy] : slabs)
-            for (auto [lz, hz] : slabs) {
-                Box b;
-                b.lo = Vec3(lx, ly, lz);
-                b.hi = Vec3(hx, hy, hz);
-                boxes.push_back(b);
-            }
+    const std::vector<Box> boxes = lattice_boxes(planes);
     std::vector<FixedBox> qboxes;
     for (const Box& b : boxes) qboxes.push_back(fixed_quantize_box(b, f));
     SlackStats st;
-    for (float ox : coords)
-        for (float oy : coords)
-            for (float oz : coords)
-                for (float dx : dirs)
-                    for (float dy : dirs)
-                        for (float dz : dirs) {
-                            if (dx == 0 && dy == 0 && dz == 0) continue;
-                            for (float tm : tmaxes) {
-                                Query q;
-                                q.ray.o = Vec3(ox, oy, oz);
-                                q.ray.d = Vec3(dx, dy, dz);
-                                q.ray.tmax = tm;
-                                const FixedRay r = fixed_setup_ray(q.ray, f);
-                                for (std::size_t k = 0; k < boxes.size(); ++k) {
-                                    q.box = boxes[k];
-                                    st.add(q, r, qboxes[k], f, exact_hit(q.ray, q.box));
-                                }
-                            }
-                        }
+    for_each_lattice_ray(coords, dirs, tmaxes, [&](const Ray& ray) {
+        Query q;
+        q.ray = ray;
+        const FixedRay r = fixed_setup_ray(q.ray, f);
+        for (std::size_t k = 0; k < boxes.size(); ++k) {
+            q.box = boxes[k];
+            st.add(q, r, qboxes[k], f, exact_hit(q.ray, q.box));
+        }
+    });
     char what[40];
     std::snprintf(what, sizeof what, "exhaustive %d/%d%s", c, d, big ? "" : " (reduced)");
     st.print(what);
