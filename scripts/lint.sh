@@ -121,26 +121,21 @@ else
     done
     yosys_run "yosys read -formal ASSERT_ON C=6 D=6 (assertions parse)" \
         "read_verilog -sv -formal -DASSERT_ON ${SOURCES[*]}; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
-    if yosys_run "yosys synth_ecp5 (to map_luts) C=16 D=16" \
-        "$read_all; hierarchy -check -top $TOP; synth_ecp5 -top $TOP -run begin:map_luts; stat"; then
-        dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
-        if [ "$dsp" = 12 ]; then
-            note "  12 MULT18X18D at 16/16" ok
-        else
-            note "  12 MULT18X18D at 16/16" "FAIL ($dsp)"
-            fail=1
+    # Synthesis to map_luts at widths C/D: the MULT18X18D count must be N.
+    expect_dsps() {  # <what> <C> <D> <N> <check>
+        if yosys_run "yosys synth_ecp5 (to map_luts) C=$2 D=$3$1" \
+            "$read_all; chparam -set COORD_BITS $2 -set DIR_BITS $3 $TOP; hierarchy -check -top $TOP; synth_ecp5 -top $TOP -run begin:map_luts; stat"; then
+            dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
+            if [ "$dsp" = "$4" ]; then
+                note "  $5" ok
+            else
+                note "  $5" "FAIL ($dsp)"
+                fail=1
+            fi
         fi
-    fi
-    if yosys_run "yosys synth_ecp5 (to map_luts) C=6 D=6 (fabric multipliers)" \
-        "$read_all; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; synth_ecp5 -top $TOP -run begin:map_luts; stat"; then
-        dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
-        if [ "$dsp" = 0 ]; then
-            note "  no MULT18X18D at 6/6" ok
-        else
-            note "  no MULT18X18D at 6/6" "FAIL ($dsp)"
-            fail=1
-        fi
-    fi
+    }
+    expect_dsps "" 16 16 12 "12 MULT18X18D at 16/16"
+    expect_dsps " (fabric multipliers)" 6 6 0 "no MULT18X18D at 6/6"
     what="yosys rejects COORD_BITS=5"
     rc=0
     "$YOSYS" -p "$read_all; chparam -set COORD_BITS 5 $TOP; hierarchy -check -top $TOP" > "$LOG/y.log" 2>&1 || rc=$?
