@@ -80,13 +80,14 @@ if [[ -f "$bin" && "$lib" -nt "$bin" ]]; then rm -f "$bin"; fi
 asserts=""
 [[ "${SIM_ASSERT:-0}" = 1 ]] && asserts="-DASSERT_ON --assert"
 defs="-DSIM_COORD_BITS=$C -DSIM_DIR_BITS=$D -DSIM_TAG_BITS=$T -DSIM_CONSERVATIVE=$cons -DSIM_DIRECT_EVAL=${SIM_DIRECT_EVAL:-1}"
+# -ffp-contract=off: as the model library (model/CMakeLists.txt).
 # shellcheck disable=SC2086
 verilator --cc --exe --build -O3 --x-assign fast --x-initial fast -Wall \
   --top-module pluecker_intersector --prefix Vpluecker_intersector \
   -GCOORD_BITS="$C" -GDIR_BITS="$D" -GTAG_BITS="$T" -GCONSERVATIVE="$cons" \
   -y "$rtl_dir" $asserts ${SIM_VFLAGS:-} \
   --Mdir "$out" -o pluecker_sim -j "$jobs" \
-  -CFLAGS "-std=c++20 ${incs[*]} $defs" \
+  -CFLAGS "-std=c++20 -ffp-contract=off ${incs[*]} $defs" \
   -LDFLAGS "${libs[*]}" \
   -MAKEFLAGS "OPT_FAST=-O3 OPT_SLOW=-O1 OPT_GLOBAL=-O1" \
   "${vlt[@]}" "$rtl" \

@@ -25,15 +25,6 @@
 #include <cstdint>
 #include <memory>
 
-// The tree must not depend on the target: no fused multiply-adds in the
-// areas and costs (GCC contracts by default in GNU mode, and aarch64 or
-// -march=native have FMA).
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
-
 namespace pluecker {
 namespace {
 

@@ -11,14 +11,6 @@
 #include <limits>
 #include <string>
 
-// Like the BVH build: the tree must not depend on the target (no fused
-// multiply-adds in the costs).
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
-
 namespace pluecker {
 
 // ---------------------------------------------------------------------------
