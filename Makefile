@@ -286,7 +286,7 @@ peer: setup
 #                   FORMAL_FLAGS=--mutants also checks that four seeded RTL
 #                   bugs are caught. Logs in build/formal/.
 REGRESS_N      ?= 1000000
-REGRESS_WIDTHS ?= 6x6 9x15 16x16 24x24 16x16n
+REGRESS_WIDTHS ?= 6x6 9x15 16x16 22x22 23x23 24x24 16x16n
 FORMAL_FLAGS   ?=
 
 .PHONY: sim-regress formal

@@ -7,8 +7,12 @@
 #      1M extreme + 1M transformed queries at every width pair of
 #      {6, 9, ..., 24}^2, the margin's boundary constructions, the exhaustive
 #      6/6 lattice and the 7/6 and 6/8 domains; zero false misses required;
+#      and the set-up suites (PLUECKER_LONG=1 model_tests --gtest_filter=
+#      'Setup.*': rays from anywhere at every width pair 6..24);
 #   2. RTL: REGRESS_N (default 10^6) extreme queries (pluecker_sim gen --kind
-#      extreme) through the Verilated RTL at each of REGRESS_WIDTHS with
+#      extreme) and REGRESS_N set-up queries (--kind setup: far cameras and
+#      lights, long directions, the range cube's edges, for the width's
+#      range) through the Verilated RTL at each of REGRESS_WIDTHS with
 #      `pluecker_sim query --check` (zero mismatches against the model), and
 #      the RTL's answers against `pluecker query --test exact` (zero false
 #      misses in conservative mode). The harness is built with the RTL's
@@ -21,7 +25,7 @@
 #
 # Environment: MODEL_BUILD (default build/model; must hold model_tests,
 # pluecker and the Python module), JOBS (default 2), REGRESS_N,
-# REGRESS_WIDTHS (default "6x6 9x15 16x16 24x24 16x16n"; a trailing n =
+# REGRESS_WIDTHS (default "6x6 9x15 16x16 22x22 23x23 24x24 16x16n"; a trailing n =
 # nearest mode, where the exact comparison is skipped), REGRESS_SIM_ROOT
 # (default build/regress/sim), REGRESS_ASSERT (default 1: SIM_ASSERT for the
 # harness), REGRESS_OUT (default build/regress), REGRESS_PARTS (default
@@ -34,7 +38,7 @@ cd "$root"
 model_build="$(cd "${MODEL_BUILD:-build/model}" && pwd)"
 jobs="${JOBS:-2}"
 n="${REGRESS_N:-1000000}"
-widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 24x24 16x16n}"
+widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 22x22 23x23 24x24 16x16n}"
 sim_root="${REGRESS_SIM_ROOT:-build/regress/sim}"
 sim_assert="${REGRESS_ASSERT:-1}"
 out="${REGRESS_OUT:-build/regress}"
@@ -54,14 +58,14 @@ done
 # --- 1. model ------------------------------------------------------------------
 if [[ " $parts " == *" model "* ]]; then
   t0=$(date +%s)
-  if PLUECKER_LONG=1 "$model_build/model_tests" --gtest_filter='Extremes.*:MarginBound.*' > "$out/model.log" 2>&1; then
-    say "model: long extremes and margin suites PASS ($(elapsed "$t0"); log $out/model.log)"
+  if PLUECKER_LONG=1 "$model_build/model_tests" --gtest_filter='Extremes.*:MarginBound.*:Setup.*' > "$out/model.log" 2>&1; then
+    say "model: long extremes, margin and set-up suites PASS ($(elapsed "$t0"); log $out/model.log)"
   else
-    say "model: long extremes and margin suites FAIL ($(elapsed "$t0"); log $out/model.log)"
+    say "model: long extremes, margin and set-up suites FAIL ($(elapsed "$t0"); log $out/model.log)"
     grep -E "FAILED|Failure" "$out/model.log" | head -10 | tee -a "$summary" || true
     fail=1
   fi
-  grep -E "total over|min slack of a real hit|exhaustive .*queries|lattice 6/6 \] [0-9]" "$out/model.log" \
+  grep -E "total over|min slack of a real hit|exhaustive .*queries|lattice 6/6 \] [0-9]|setup (total|bites|traversal)" "$out/model.log" \
     | sed 's/^/regress:   /' | tee -a "$summary" || true
 fi
 
@@ -88,24 +92,35 @@ if [[ " $parts " == *" rtl "* ]]; then
       "$sim" gen --n "$n" --kind extreme --seed 20261 --out "$queries"
       "$model_build/pluecker" query --test exact "$queries" > "$exact"
     fi
-    rc=0
-    "$sim" query --check "$queries" > "$out/rtl_$w.answers" 2> "$out/rtl_$w.log" || rc=$?
-    check="$(grep -E '^check' "$out/rtl_$w.log" | tail -1)"
-    if [[ $rc -ne 0 ]]; then
-      say "rtl $w ($mode): FAIL, $check ($(elapsed "$t0"))"
-      head -5 "$out/rtl_$w.log" | tee -a "$summary"
-      fail=1
-      continue
+    # The set-up queries depend on COORD_BITS (boxes inside its range).
+    setup_q="$out/setup_${c}_${n}.txt"
+    setup_exact="$out/setup_${c}_${n}.exact"
+    if [[ ! -s "$setup_q" ]]; then
+      "$sim" gen --n "$n" --kind setup --seed 20262 --out "$setup_q"
+      "$model_build/pluecker" query --test exact "$setup_q" > "$setup_exact"
     fi
-    if [[ $mode == conservative ]]; then
-      # Columns: exact answer, RTL answer. A false miss is 1 0.
-      read -r fm fh hits <<< "$(paste -d' ' "$exact" "$out/rtl_$w.answers" \
-        | awk '$1==1 && $2==0 {m++} $1==0 && $2==1 {h++} $1==1 {r++} END {print m+0, h+0, r+0}')"
-      say "rtl $w ($mode): $check; against exact: $hits real hits, $fm false misses, $fh false hits ($(elapsed "$t0"))"
-      [[ "$fm" == 0 ]] || fail=1
-    else
-      say "rtl $w ($mode): $check ($(elapsed "$t0"))"
-    fi
+    for kind in extreme setup; do
+      if [[ $kind == extreme ]]; then qf="$queries"; ef="$exact"; else qf="$setup_q"; ef="$setup_exact"; fi
+      tag="${w}_$kind"
+      rc=0
+      "$sim" query --check "$qf" > "$out/rtl_$tag.answers" 2> "$out/rtl_$tag.log" || rc=$?
+      check="$(grep -E '^check' "$out/rtl_$tag.log" | tail -1)"
+      if [[ $rc -ne 0 ]]; then
+        say "rtl $w ($mode, $kind): FAIL, $check ($(elapsed "$t0"))"
+        head -5 "$out/rtl_$tag.log" | tee -a "$summary"
+        fail=1
+        continue
+      fi
+      if [[ $mode == conservative ]]; then
+        # Columns: exact answer, RTL answer. A false miss is 1 0.
+        read -r fm fh hits <<< "$(paste -d' ' "$ef" "$out/rtl_$tag.answers" \
+          | awk '$1==1 && $2==0 {m++} $1==0 && $2==1 {h++} $1==1 {r++} END {print m+0, h+0, r+0}')"
+        say "rtl $w ($mode, $kind): $check; against exact: $hits real hits, $fm false misses, $fh false hits ($(elapsed "$t0"))"
+        [[ "$fm" == 0 ]] || fail=1
+      else
+        say "rtl $w ($mode, $kind): $check ($(elapsed "$t0"))"
+      fi
+    done
   done
 fi
 

@@ -89,7 +89,7 @@ int cmd_bench(const std::vector<std::string>& argv) {
     std::vector<std::uint8_t> expect(qs.size());
     std::size_t hits = 0;
     for (std::size_t i = 0; i < qs.size(); ++i) {
-        const FixedRay r = fixed_setup_ray(qs[i].ray, fmt);
+        const FixedRay r = *fixed_setup_ray(qs[i].ray, fmt);  // random_queries start inside the range
         const FixedBox b = fixed_quantize_box(qs[i].box, fmt);
         packed[i] = pack_query(r, b);
         expect[i] = fixed_hit(r, b, fmt) ? 1 : 0;

@@ -2,6 +2,7 @@
 // `pluecker_sim gen`: random and extreme queries (querygen.hpp) as a query
 // file, for `pluecker_sim query --check` and the cocotb benches.
 #include "commands.hpp"
+#include "rtl_intersector.hpp"
 
 #include "pluecker/query.hpp"
 #include "pluecker/querygen.hpp"
@@ -15,12 +16,15 @@ namespace pluecker::sim {
 namespace {
 
 constexpr const char* kUsage =
-    "usage: pluecker_sim gen [--n N] [--seed S] [--kind random|extreme|mixed] --out FILE\n"
+    "usage: pluecker_sim gen [--n N] [--seed S] [--kind random|extreme|mixed|setup] --out FILE\n"
     "Writes N queries (default 10000) of the model's seeded generators (querygen.hpp):\n"
     "  random   origins and boxes in [-1,1]^3, half of the rays aimed near the box\n"
     "  extreme  axis-parallel and near-axis rays, signed zeros, exact edge/corner hits and\n"
     "           their 1-ulp neighbours, flat boxes, ... (every family in turn)\n"
     "  mixed    half of each (default)\n"
+    "  setup    rays from anywhere into boxes of this build's COORD_BITS range: far cameras\n"
+    "           and lights through box corners and edges, long unnormalised directions\n"
+    "           ending on entry faces, the range cube's own edges (setup_queries)\n"
     "exit status: 0 ok, 2 bad input or options\n";
 
 }  // namespace
@@ -47,8 +51,10 @@ int cmd_gen(const std::vector<std::string>& argv) {
         qs = random_queries(seed, n / 2);
         const std::vector<Query> ex = extreme_queries(seed, n - n / 2);
         qs.insert(qs.end(), ex.begin(), ex.end());
+    } else if (kind == "setup") {
+        qs = setup_queries(seed, n, built_format().coord_bits);
     } else {
-        throw InputError("option --kind: '" + kind + "' is not one of random, extreme, mixed");
+        throw InputError("option --kind: '" + kind + "' is not one of random, extreme, mixed, setup");
     }
     std::ofstream out(path);
     if (!out) throw InputError(path + ": cannot create (" + std::strerror(errno) + ")");

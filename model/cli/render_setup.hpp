@@ -99,7 +99,8 @@ inline void check_epsilon_fixed(float epsilon, const FixedFormat& f) {
     } catch (const InputError&) {
         std::ostringstream os;
         os << "option --epsilon: " << epsilon << " grows the BVH boxes of the scene (normalised to [-1, 1]) to ["
-           << widest.lo.x << ", " << widest.hi.x << "], outside the fixed-point range [-2, 2) of --test fixed";
+           << widest.lo.x << ", " << widest.hi.x << "], outside the fixed-point range " << f.range_text()
+           << " of --test fixed";
         throw InputError(os.str());
     }
 }

@@ -216,6 +216,12 @@ PYBIND11_MODULE(pluecker_py, m) {
         extreme_queries(seed, n, &fam);
         return fam;
     }, py::arg("seed"), py::arg("n"), "Family index of every query extreme_queries(seed, n) returns");
+    m.def("setup_queries", [](std::uint64_t seed, std::size_t n, int coord_bits) {
+        return setup_queries(seed, n, coord_bits);
+    }, py::arg("seed"), py::arg("n"), py::arg("coord_bits"),
+          "Rays from anywhere into boxes of the range of coord_bits (querygen.hpp's set-up families)");
+    m.def("setup_family_count", &setup_family_count);
+    m.def("setup_family_name", &setup_family_name, py::arg("family"));
     m.def("extreme_family_count", &extreme_family_count);
     m.def("extreme_family_name", &extreme_family_name, py::arg("family"));
 
@@ -269,6 +275,10 @@ PYBIND11_MODULE(pluecker_py, m) {
         .def("dir_one", &FixedFormat::dir_one)
         .def("coord_lsb", &FixedFormat::coord_lsb)
         .def("dir_lsb", &FixedFormat::dir_lsb)
+        .def("coord_lo_value", &FixedFormat::coord_lo_value)
+        .def("coord_hi_value", &FixedFormat::coord_hi_value)
+        .def("range_box", &FixedFormat::range_box, "The range cube R: every box the datapath takes lies in it")
+        .def("range_text", &FixedFormat::range_text)
         .def("__repr__", [](const FixedFormat& f) {
             return "FixedFormat(coord_bits=" + std::to_string(f.coord_bits) + ", dir_bits=" +
                    std::to_string(f.dir_bits) + ", mode='" + mode_name(f.mode) + "')";
@@ -297,6 +307,7 @@ PYBIND11_MODULE(pluecker_py, m) {
         .def_readwrite("dir", &FixedRay::dir)
         .def_readwrite("end", &FixedRay::end)
         .def_readwrite("has_end", &FixedRay::has_end)
+        .def_readwrite("clipped", &FixedRay::clipped)
         .def("__repr__", [](const FixedRay& r) {
             return "FixedRay(cls=" + std::to_string(r.cls) + ", org=" + array_repr(r.org) + ", dir=" +
                    array_repr(r.dir) + ", end=" + array_repr(r.end) + ", has_end=" + (r.has_end ? "True" : "False") +
@@ -311,7 +322,15 @@ PYBIND11_MODULE(pluecker_py, m) {
         .def("__repr__",
              [](const FixedBox& b) { return "FixedBox(lo=" + array_repr(b.lo) + ", hi=" + array_repr(b.hi) + ")"; });
 
-    m.def("fixed_setup_ray", &fixed_setup_ray, py::arg("ray"), py::arg("fmt"));
+    m.def("fixed_setup_ray", &fixed_setup_ray, py::arg("ray"), py::arg("fmt"),
+          "The ray as the RTL receives it (any finite origin: one outside the range cube is clipped "
+          "exactly onto it), or None when the segment never meets the range cube (a miss)");
+    m.def("fixed_setup_end", [](FixedRay r, const Ray& ray, const FixedFormat& f) {
+        f.validate();
+        fixed_setup_end(r, ray, f);
+        return r;
+    }, py::arg("fixed_ray"), py::arg("ray"), py::arg("fmt"),
+          "A copy of fixed_ray with the segment end recomputed from ray (same o and d, new tmax)");
     m.def("fixed_quantize_box", &fixed_quantize_box, py::arg("box"), py::arg("fmt"));
     m.def("fixed_hit", [](const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
         check_operands(r, b, f);
@@ -323,13 +342,6 @@ PYBIND11_MODULE(pluecker_py, m) {
     m.def("fixed_hit", [](const Query& q, const FixedFormat& f) {
         return fixed_hit(q.ray, q.box, f);
     }, py::arg("query"), py::arg("fmt"), "Set up and test one float query");
-    m.def("fixed_clip_ray", &fixed_clip_ray, py::arg("ray"),
-          "(ray, t0) clipped to the representable cube, or None when it misses the cube");
-    m.attr("CLIP_HALF_WIDTH") = kClipHalfWidth;
-    py::class_<ClippedRay>(m, "ClippedRay")
-        .def_readonly("ray", &ClippedRay::ray)
-        .def_readonly("t0", &ClippedRay::t0);
-
     m.def("rtl_ports", &rtl_ports, py::arg("ray"), py::arg("box"), py::arg("fmt"),
           "Port values of rtl/pluecker_intersector.sv for one quantised query: a dict from port name "
           "(ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i) to an "

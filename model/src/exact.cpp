@@ -31,17 +31,52 @@
 //      mpz_set_d, and summed in GMP.
 #include "pluecker/boxtest.hpp"
 
+#include "exact_sum.hpp"
+
 #include <gmp.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace pluecker {
+
+namespace detail {
 
 namespace {
 
 constexpr int kProductScale = 298;  // p * 2^298 is an integer for p = float*float
 
-// Exact sign of p[0] + ... + p[n-1], each p[k] an exact product of two floats.
+// Scratch integers of the slow paths, one set per thread.
+struct Scratch {
+    mpz_t sum, term, den, rem;
+    Scratch() {
+        mpz_init2(sum, 640);
+        mpz_init2(term, 640);
+        mpz_init2(den, 640);
+        mpz_init2(rem, 640);
+    }
+    ~Scratch() {
+        mpz_clear(sum);
+        mpz_clear(term);
+        mpz_clear(den);
+        mpz_clear(rem);
+    }
+    Scratch(const Scratch&) = delete;
+    Scratch& operator=(const Scratch&) = delete;
+};
+thread_local Scratch z;
+
+// z.sum = (p[0] + ... + p[n-1]) * 2^298, exactly.
+void exact_scaled_sum(const double* p, int n) {
+    mpz_set_ui(z.sum, 0);
+    for (int k = 0; k < n; ++k) {
+        mpz_set_d(z.term, std::ldexp(p[k], kProductScale));  // an integer: exact
+        mpz_add(z.sum, z.sum, z.term);
+    }
+}
+
+}  // namespace
+
 int exact_sign_of_sum(const double* p, int n) {
     double s = 0.0, mag = 0.0;
     for (int k = 0; k < n; ++k) {
@@ -52,26 +87,54 @@ int exact_sign_of_sum(const double* p, int n) {
     const double bound = 0x1p-50 * mag;  // 8u * sum|p|, u = 2^-53
     if (s > bound) return 1;
     if (s < -bound) return -1;
-    // Slow path: exact integer sum.
-    struct Scratch {
-        mpz_t sum, term;
-        Scratch() {
-            mpz_init2(sum, 640);
-            mpz_init2(term, 640);
-        }
-        ~Scratch() {
-            mpz_clear(sum);
-            mpz_clear(term);
-        }
-    };
-    thread_local Scratch z;
-    mpz_set_ui(z.sum, 0);
-    for (int k = 0; k < n; ++k) {
-        mpz_set_d(z.term, std::ldexp(p[k], kProductScale));  // an integer: exact
-        mpz_add(z.sum, z.sum, z.term);
-    }
+    exact_scaled_sum(p, n);  // slow path: exact integer sum
     return mpz_sgn(z.sum);
 }
+
+std::int64_t exact_round_ratio(const double* p, int n, float q) {
+    constexpr double kLimit = 0x1p24;
+    if (n < 1 || n > 3 || !(q > 0.0f)) throw std::logic_error("exact_round_ratio: bad arguments");
+    // Fast path: a candidate k from the double quotient, confirmed by exact
+    // signs of sum - (k -+ 1/2) * q. (k -+ 1/2) * q has at most 25 + 24
+    // significant bits, so it is exact in a double and a multiple of 2^-150.
+    double s = 0.0;
+    for (int i = 0; i < n; ++i) s += p[i];
+    double k = std::nearbyint(s / static_cast<double>(q));
+    for (int step = 0; step < 3 && std::fabs(k) < kLimit; ++step) {
+        double t[4] = {p[0], n > 1 ? p[1] : 0.0, n > 2 ? p[2] : 0.0, -(k - 0.5) * static_cast<double>(q)};
+        const int below = exact_sign_of_sum(t, 4);  // sign of v - (k - 1/2)
+        if (below < 0) {
+            k -= 1;
+            continue;
+        }
+        t[3] = -(k + 0.5) * static_cast<double>(q);
+        const int above = exact_sign_of_sum(t, 4);  // sign of v - (k + 1/2)
+        if (above > 0) {
+            k += 1;
+            continue;
+        }
+        const bool odd = std::fmod(k, 2.0) != 0.0;
+        if (below == 0 && odd) k -= 1;  // v = k - 1/2: to even
+        if (above == 0 && odd) k += 1;  // v = k + 1/2: to even
+        return static_cast<std::int64_t>(k);
+    }
+    // Slow path (heavy cancellation): floor division of exact integers.
+    exact_scaled_sum(p, n);
+    mpz_set_d(z.den, std::ldexp(static_cast<double>(q), kProductScale));
+    mpz_fdiv_qr(z.term, z.rem, z.sum, z.den);  // sum = term * den + rem, 0 <= rem < den
+    mpz_mul_2exp(z.rem, z.rem, 1);
+    const int c = mpz_cmp(z.rem, z.den);  // 2 rem against den
+    if (c > 0 || (c == 0 && mpz_odd_p(z.term))) mpz_add_ui(z.term, z.term, 1);
+    if (!mpz_fits_slong_p(z.term) || std::fabs(static_cast<double>(mpz_get_si(z.term))) >= kLimit)
+        throw std::logic_error("exact_round_ratio: quotient out of range");
+    return mpz_get_si(z.term);
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::exact_sign_of_sum;
 
 // A bound of a slab interval: (x - y) / q with q > 0.
 struct Frac {

@@ -3,6 +3,9 @@
 // bit-exact datapath documented in fixed.hpp.
 #include "pluecker/fixed.hpp"
 
+#include "exact_sum.hpp"
+#include "pluecker/boxtest.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -123,23 +126,105 @@ FixedMode parse_fixed_mode(const std::string& s) {
 
 const char* mode_name(FixedMode m) { return m == FixedMode::Conservative ? "conservative" : "nearest"; }
 
-FixedRay fixed_setup_ray(const Ray& r, const FixedFormat& f) {
-    f.validate();
-    FixedRay out;
-    out.cls = ray_class(r.d);
+float FixedFormat::coord_lo_value() const { return -2.0f; }
+float FixedFormat::coord_hi_value() const { return 2.0f - std::ldexp(1.0f, 2 - coord_bits); }
+Box FixedFormat::range_box() const { return Box{Vec3(coord_lo_value()), Vec3(coord_hi_value())}; }
+
+std::string FixedFormat::range_text() const {
+    return "[" + fmt_float(coord_lo_value()) + ", " + fmt_float(coord_hi_value()) + "] of COORD_BITS = " +
+           std::to_string(coord_bits);
+}
+
+namespace {
+
+void check_ray(const Ray& r) {
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(r.o[a]))
+            throw InputError(std::string("ray origin ") + axis_name(a) + " = " + fmt_float(r.o[a]) + " is not finite");
     const float m = std::max({std::fabs(r.d.x), std::fabs(r.d.y), std::fabs(r.d.z)});
     if (!(m > 0.0f) || !std::isfinite(m))
         throw InputError("ray direction (" + fmt_float(r.d.x) + ", " + fmt_float(r.d.y) + ", " + fmt_float(r.d.z) +
                          ") is zero, NaN or infinite");
     if (std::isnan(r.tmax) || r.tmax < 0.0f) throw InputError("ray tmax " + fmt_float(r.tmax) + " is negative or NaN");
-    for (int a = 0; a < 3; ++a) {
-        const double q = std::isfinite(r.o[a]) ? quantize(r.o[a], Round::Nearest, f) : NAN;
-        if (!in_coord_range(q, f))
-            throw InputError(std::string("ray origin ") + axis_name(a) + " = " + fmt_float(r.o[a]) +
-                             " is outside the fixed-point range [-2, 2)");
-        out.org[a] = static_cast<i64>(q);
-        out.dir[a] = scaled_direction(r.d[a], m, f.dir_bits);
+}
+
+bool inside(const Vec3& p, const Box& b) {
+    for (int a = 0; a < 3; ++a)
+        if (!(b.lo[a] <= p[a] && p[a] <= b.hi[a])) return false;
+    return true;
+}
+
+// The plane of `range` through which a ray moving along d_a enters slab a.
+float entry_plane(const Box& range, const Ray& r, int a) { return r.d[a] > 0.0f ? range.lo[a] : range.hi[a]; }
+
+// Exactly: does the ray enter slab a later than slab b (both moving)? The
+// entry parameters are (P_a - o_a) / d_a; compare (P_a - o_a) * d_b * sgn
+// against (P_b - o_b) * d_a * sgn, sgn making both denominators positive.
+bool enters_later(const Ray& r, const Box& range, int a, int b) {
+    const double sa = r.d[a] > 0.0f ? 1.0 : -1.0, sb = r.d[b] > 0.0f ? 1.0 : -1.0;
+    const double qa = std::fabs(double(r.d[a])), qb = std::fabs(double(r.d[b]));
+    const double p[4] = {
+        sa * double(entry_plane(range, r, a)) * qb,
+        -sa * double(r.o[a]) * qb,
+        -sb * double(entry_plane(range, r, b)) * qa,
+        sb * double(r.o[b]) * qa,
+    };
+    return detail::exact_sign_of_sum(p, 4) > 0;
+}
+
+// The origin of a ray that starts outside `range` but meets it: the point
+// p = o + t0*d where it enters the range (t0 > 0 exactly the entry
+// parameter), every coordinate rounded to nearest from its exact value.
+std::array<i64, 3> clipped_origin(const Ray& r, const FixedFormat& f) {
+    const Box range = f.range_box();
+    int e = -1;  // the entry axis: the moving axis whose slab is entered last
+    for (int a = 0; a < 3; ++a)
+        if (r.d[a] != 0.0f && (e < 0 || enters_later(r, range, a, e))) e = a;
+    const double scale = std::ldexp(1.0, f.coord_bits - 2);
+    const float pe = entry_plane(range, r, e);
+    const double se = r.d[e] > 0.0f ? 1.0 : -1.0;
+    std::array<i64, 3> q{};
+    for (int b = 0; b < 3; ++b) {
+        if (b == e) {
+            q[b] = r.d[e] > 0.0f ? f.coord_min() : f.coord_max();  // on the entry face, a grid plane
+        } else if (r.d[b] == 0.0f) {
+            q[b] = static_cast<i64>(quantize(r.o[b], Round::Nearest, f));  // inside its slab: exact_hit said so
+        } else {
+            // p_b = o_b + (P_e - o_e) * d_b / d_e = (o_b*d_e + P_e*d_b - o_e*d_b) / d_e, in LSB units.
+            const double t[3] = {
+                se * double(r.o[b]) * double(r.d[e]) * scale,
+                se * double(pe) * double(r.d[b]) * scale,
+                -se * double(r.o[e]) * double(r.d[b]) * scale,
+            };
+            q[b] = detail::exact_round_ratio(t, 3, std::fabs(r.d[e]));
+        }
     }
+    return q;
+}
+
+}  // namespace
+
+std::optional<FixedRay> fixed_setup_ray(const Ray& r, const FixedFormat& f) {
+    f.validate();
+    check_ray(r);
+    FixedRay out;
+    out.cls = ray_class(r.d);
+    const float m = std::max({std::fabs(r.d.x), std::fabs(r.d.y), std::fabs(r.d.z)});
+    for (int a = 0; a < 3; ++a) out.dir[a] = scaled_direction(r.d[a], m, f.dir_bits);
+    const Box range = f.range_box();
+    if (inside(r.o, range)) {
+        for (int a = 0; a < 3; ++a) out.org[a] = static_cast<i64>(quantize(r.o[a], Round::Nearest, f));
+    } else {
+        if (!exact_hit(r, range)) return std::nullopt;  // never meets a representable box
+        out.org = clipped_origin(r, f);
+        out.clipped = true;
+    }
+    fixed_setup_end(out, r, f);
+    return out;
+}
+
+void fixed_setup_end(FixedRay& out, const Ray& r, const FixedFormat& f) {
+    if (std::isnan(r.tmax) || r.tmax < 0.0f) throw InputError("ray tmax " + fmt_float(r.tmax) + " is negative or NaN");
     // Segment end e = o + tmax*d, exact: tmax*d is exact in double (two
     // 24-bit mantissas), the sum is kept as s + err.
     out.has_end = std::isfinite(r.tmax);
@@ -164,7 +249,6 @@ FixedRay fixed_setup_ray(const Ray& r, const FixedFormat& f) {
         out.end[a] = static_cast<i64>(q);
     }
     if (!out.has_end) out.end = {0, 0, 0};
-    return out;
 }
 
 FixedBox fixed_quantize_box(const Box& b, const FixedFormat& f) {
@@ -175,11 +259,11 @@ FixedBox fixed_quantize_box(const Box& b, const FixedFormat& f) {
         if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a]) || b.lo[a] > b.hi[a])
             throw InputError(std::string("box ") + axis_name(a) + " extent [" + fmt_float(b.lo[a]) + ", " +
                              fmt_float(b.hi[a]) + "] is empty or not finite");
+        if (b.lo[a] < f.coord_lo_value() || b.hi[a] > f.coord_hi_value())
+            throw InputError(std::string("box ") + axis_name(a) + " extent [" + fmt_float(b.lo[a]) + ", " +
+                             fmt_float(b.hi[a]) + "] is outside the fixed-point range " + f.range_text());
         const double lo = quantize(b.lo[a], cons ? Round::Down : Round::Nearest, f);
         const double hi = quantize(b.hi[a], cons ? Round::Up : Round::Nearest, f);
-        if (!in_coord_range(lo, f) || !in_coord_range(hi, f))
-            throw InputError(std::string("box ") + axis_name(a) + " extent [" + fmt_float(b.lo[a]) + ", " +
-                             fmt_float(b.hi[a]) + "] is outside the fixed-point range [-2, 2)");
         out.lo[a] = static_cast<i64>(lo);
         out.hi[a] = static_cast<i64>(hi);
     }
@@ -211,37 +295,9 @@ bool fixed_hit(const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
 }
 
 bool fixed_hit(const Ray& r, const Box& b, const FixedFormat& f) {
-    return fixed_hit(fixed_setup_ray(r, f), fixed_quantize_box(b, f), f);
-}
-
-std::optional<ClippedRay> fixed_clip_ray(const Ray& r) {
-    const double h = kClipHalfWidth;
-    bool inside = true;
-    for (int a = 0; a < 3; ++a) inside = inside && std::fabs(r.o[a]) <= kClipHalfWidth;
-    if (inside) return ClippedRay{r, 0.0f};
-    double t0 = 0.0, t1 = std::isfinite(r.tmax) ? static_cast<double>(r.tmax) : INFINITY;
-    for (int a = 0; a < 3; ++a) {
-        const double o = r.o[a], d = r.d[a];
-        if (d == 0.0) {
-            if (std::fabs(o) > h) return std::nullopt;
-            continue;
-        }
-        double ta = (-h - o) / d, tb = (h - o) / d;
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-    }
-    if (!(t0 <= t1)) return std::nullopt;
-    ClippedRay c;
-    c.t0 = static_cast<float>(t0);
-    for (int a = 0; a < 3; ++a) {
-        const double p = static_cast<double>(r.o[a]) + t0 * static_cast<double>(r.d[a]);
-        c.ray.o[a] = static_cast<float>(std::clamp(p, -h, h));
-    }
-    c.ray.d = r.d;
-    c.ray.tmax = std::isfinite(r.tmax) ? std::nextafter(static_cast<float>(r.tmax - t0), kInf) : kInf;
-    if (c.ray.tmax < 0.0f) c.ray.tmax = 0.0f;
-    return c;
+    const FixedBox qb = fixed_quantize_box(b, f);
+    const std::optional<FixedRay> qr = fixed_setup_ray(r, f);
+    return qr && fixed_hit(*qr, qb, f);
 }
 
 }  // namespace pluecker

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <utility>
 
 namespace pluecker {
@@ -416,6 +417,276 @@ Query random_query(Rng& g) {
     return q;
 }
 
+// ---------------------------------------------------------------------------
+// Set-up families (setup_queries): the rays a renderer traces, from
+// anywhere, into boxes of the range of one COORD_BITS.
+
+// The range of COORD_BITS = c as float planes: [-2, 2 - 2^(2-c)].
+float range_hi(int c) { return 2.0f - std::ldexp(1.0f, 2 - c); }
+
+// A distance log-uniform in [1, 1e6] (powers of two times [1, 2), exact
+// arithmetic only, so the same on every platform).
+float far_distance(Rng& g) { return std::min(1e6f, std::ldexp(1.0f + g.unit(), static_cast<int>(g.below(20)))); }
+
+// A multiple of 2^-3 at distance far_distance() from p, in a random
+// direction: a camera or light far outside the scene. On the 2^-3 grid
+// below 2^20, so q - o is exact in float for every q on that grid.
+Vec3 far_point(Rng& g, const Vec3& p) {
+    for (;;) {
+        const Vec3 v = random_dir(g);
+        const float len = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+        const float r = far_distance(g);
+        Vec3 o;
+        for (int a = 0; a < 3; ++a) o[a] = std::ldexp(std::nearbyint(std::ldexp(p[a] + r * v[a] / len, 3)), -3);
+        if (o != p) return o;
+    }
+}
+
+// A box on the 2^-3 grid inside [-1.5, 1.5], each axis one to eight steps.
+Box eighth_box(Rng& g) {
+    Box b;
+    for (int a = 0; a < 3; ++a) {
+        const int lo = static_cast<int>(g.below(21)) - 12;  // -1.5 .. 1.0
+        const int w = 1 + static_cast<int>(g.below(std::min(8, 12 - lo)));
+        b.lo[a] = std::ldexp(static_cast<float>(lo), -3);
+        b.hi[a] = std::ldexp(static_cast<float>(lo + w), -3);
+    }
+    return b;
+}
+
+// A point of b with `fixed` coordinates on planes and the rest on the
+// 2^-3 grid inside (or at the plane when the box is one step wide).
+Vec3 eighth_point_on_box(Rng& g, const Box& b, int fixed) {
+    int axes[3] = {0, 1, 2};
+    for (int i = 2; i > 0; --i) std::swap(axes[i], axes[g.below(i + 1)]);
+    Vec3 p;
+    for (int k = 0; k < 3; ++k) {
+        const int a = axes[k];
+        const int steps = static_cast<int>(std::ldexp(b.hi[a] - b.lo[a], 3));
+        p[a] = k < fixed ? (g.coin() ? b.lo[a] : b.hi[a])
+                         : b.lo[a] + std::ldexp(static_cast<float>(steps > 1 ? 1 + g.below(steps - 1) : 0), -3);
+    }
+    return p;
+}
+
+// Scales d by 2^s (exact) and returns the t at which the ray meets the
+// point it was aimed at: long and short unnormalised directions.
+float scale_dir(Rng& g, Vec3& d, int lo, int hi) {
+    const int s = lo + static_cast<int>(g.below(static_cast<std::uint32_t>(hi - lo + 1)));
+    d *= std::ldexp(1.0f, s);
+    return std::ldexp(1.0f, -s);
+}
+
+// The segment ends exactly at t, or one ulp before or after it, or never.
+float end_near(Rng& g, float t) {
+    switch (g.below(4)) {
+        case 0: return t;
+        case 1: return down(t);
+        case 2: return up(t);
+        default: return kInf;
+    }
+}
+
+// One ulp on one direction component, or on one box plane, or nothing.
+void nudge(Rng& g, Query& q) {
+    const int a = static_cast<int>(g.below(3));
+    switch (g.below(3)) {
+        case 0:
+            if (q.ray.d[a] != 0.0f) q.ray.d[a] = ulp_step(g, q.ray.d[a]);
+            break;
+        case 1: {
+            float& plane = g.coin() ? q.box.lo[a] : q.box.hi[a];
+            plane = ulp_step(g, plane);
+            if (q.box.lo[a] > q.box.hi[a]) std::swap(q.box.lo[a], q.box.hi[a]);
+            break;
+        }
+        default: break;
+    }
+}
+
+// A ray from far outside through a point of the box with `fixed`
+// coordinates on its planes (3 corner, 2 edge), exactly, then nudged.
+Query far_through(Rng& g, int fixed) {
+    Query q;
+    q.box = eighth_box(g);
+    const Vec3 p = eighth_point_on_box(g, q.box, fixed);
+    q.ray.o = far_point(g, p);
+    q.ray.d = p - q.ray.o;  // exact: both on the 2^-3 grid below 2^20
+    q.ray.tmax = end_near(g, scale_dir(g, q.ray.d, -4, 4));
+    nudge(g, q);
+    return q;
+}
+Query far_corner(Rng& g, int) { return far_through(g, 3); }
+Query far_edge(Rng& g, int) { return far_through(g, 2); }
+
+// A far camera aimed in float at an edge or corner of a float box in
+// [-1, 1]: d = fl(p - o), so the ray passes within about |o| * 2^-24.
+Query far_aimed(Rng& g, int) {
+    Query q;
+    const Vec3 c(g.sym(), g.sym(), g.sym());
+    for (int a = 0; a < 3; ++a) {
+        const float h = 0.3f * g.unit() + 0x1p-10f;
+        q.box.lo[a] = std::max(-1.0f, c[a] - h);
+        q.box.hi[a] = std::min(1.0f, c[a] + h);
+    }
+    Vec3 p;
+    const int fixed = 2 + static_cast<int>(g.below(2));
+    for (int a = 0; a < 3; ++a)
+        p[a] = a < fixed ? (g.coin() ? q.box.lo[a] : q.box.hi[a]) : 0.5f * (q.box.lo[a] + q.box.hi[a]);
+    std::swap(p[g.below(3)], p[g.below(3)]);
+    const Vec3 v = random_dir(g);
+    const float r = far_distance(g);
+    q.ray.o = p + r * v;
+    q.ray.d = p - q.ray.o;
+    if (q.ray.d == Vec3(0.0f)) q.ray.d = v;
+    if (g.coin()) nudge(g, q);
+    return q;
+}
+
+// A light ray. Shadow ray: from a point on a face towards a far light
+// (the segment ends far outside). Or from the light back to the point on
+// the face the light sees, ending exactly on that entry face (or one ulp
+// before or after it).
+Query light_ray(Rng& g, int) {
+    Query q;
+    q.box = eighth_box(g);
+    const Vec3 c = q.box.center();
+    const Vec3 light = far_point(g, c);
+    int a = 0;  // the axis along which the light is farthest from the box
+    for (int k = 1; k < 3; ++k)
+        if (std::fabs(light[k] - c[k]) > std::fabs(light[a] - c[a])) a = k;
+    Vec3 p = eighth_point_on_box(g, q.box, 0);
+    p[a] = light[a] > c[a] ? q.box.hi[a] : q.box.lo[a];  // on the face towards the light
+    if (g.coin()) {
+        q.ray.o = p;
+        q.ray.d = light - p;
+        q.ray.tmax = g.coin() ? 1.0f : kInf;
+    } else {
+        q.ray.o = light;
+        q.ray.d = p - light;
+        q.ray.tmax = end_near(g, scale_dir(g, q.ray.d, -4, 4));
+    }
+    return q;
+}
+
+// Long unnormalised directions (|d| up to about 100) from inside the
+// scene, segments ending exactly on the box's entry face or one ulp off.
+Query long_dir(Rng& g, int) {
+    Query q;
+    q.box = grid_box(g);
+    Vec3 o;
+    int a = 0;
+    for (;;) {  // an origin outside the slab of axis a
+        o = grid_point(g);
+        a = static_cast<int>(g.below(3));
+        if (o[a] < q.box.lo[a] || o[a] > q.box.hi[a]) break;
+    }
+    Vec3 p = point_on_box(g, q.box, 1 + static_cast<int>(g.below(3)));
+    p[a] = o[a] < q.box.lo[a] ? q.box.lo[a] : q.box.hi[a];  // on the face o sees
+    q.ray.o = o;
+    q.ray.d = p - o;
+    q.ray.tmax = end_near(g, scale_dir(g, q.ray.d, 0, 6));
+    return q;
+}
+
+// The edges of the range itself: origins on a face of the range cube or
+// one ulp outside it, rays along a face (d_a = +-0) or through an edge
+// or corner of the cube, boxes that touch the range limits.
+Query range_edge(Rng& g, int c) {
+    Query q;
+    const float lo = -2.0f, hi = range_hi(c);
+    const float lsb = std::ldexp(1.0f, 2 - c);
+    // A box with one to three planes on the range limits.
+    for (int a = 0; a < 3; ++a) {
+        const float u = g.sym() * 1.5f;
+        const float w = std::ldexp(static_cast<float>(1 + g.below(64)), -6);
+        q.box.lo[a] = std::max(lo, u - w);
+        q.box.hi[a] = std::min(hi, u + w);
+        switch (g.below(4)) {
+            case 0: q.box.lo[a] = lo; break;
+            case 1: q.box.hi[a] = hi; break;
+            default: break;
+        }
+        if (q.box.lo[a] > q.box.hi[a]) std::swap(q.box.lo[a], q.box.hi[a]);
+    }
+    Vec3 p;  // a point of the box, on the range limits where the box touches them, else on the grid if it can
+    for (int a = 0; a < 3; ++a) {
+        const bool on_lo = q.box.lo[a] == lo, on_hi = q.box.hi[a] == hi;
+        if (on_lo && (!on_hi || g.coin())) {
+            p[a] = lo;
+        } else if (on_hi) {
+            p[a] = hi;
+        } else {
+            const float mid = q.box.lo[a] + (q.box.hi[a] - q.box.lo[a]) * 0.5f;
+            const float on_grid = std::nearbyint(mid / lsb) * lsb;
+            p[a] = on_grid >= q.box.lo[a] && on_grid <= q.box.hi[a] ? on_grid : mid;
+        }
+    }
+    switch (g.below(3)) {
+        case 0: {  // an origin on a range face or one ulp outside, moving along it
+            const int a = static_cast<int>(g.below(3));
+            q.ray.o = p;
+            const float face = g.coin() ? lo : hi;
+            q.ray.o[a] = g.coin() ? face : face == lo ? down(lo) : up(hi);
+            const int b = (a + 1 + static_cast<int>(g.below(2))) % 3;
+            q.ray.o[b] = g.coin() ? -3.0f : 3.0f;
+            q.ray.d = Vec3(0.0f);
+            q.ray.d[a] = g.coin() ? 0.0f : -0.0f;
+            q.ray.d[b] = q.ray.o[b] > 0 ? -1.0f : 1.0f;
+            q.ray.d[3 - a - b] = g.coin() ? 0.0f : std::ldexp(g.sym(), -static_cast<int>(g.below(30)));
+            break;
+        }
+        case 1: {  // from outside, exactly through p (the grid of the range lets d be exact)
+            const float reach = std::min(1e6f, std::ldexp(1.0f, 25 - c));
+            Vec3 o;
+            for (int a = 0; a < 3; ++a) {
+                const float off = std::nearbyint(g.sym() * reach / lsb) * lsb;
+                o[a] = p[a] + off;
+            }
+            if (o == p) o.x = p.x + 4.0f;
+            q.ray.o = o;
+            q.ray.d = p - o;
+            q.ray.tmax = end_near(g, scale_dir(g, q.ray.d, -2, 2));
+            nudge(g, q);
+            break;
+        }
+        default: {  // origin one ulp outside a range face, aimed at p
+            q.ray.o = p;
+            const int a = static_cast<int>(g.below(3));
+            q.ray.o[a] = g.coin() ? down(lo) : up(hi);
+            q.ray.d = p - q.ray.o;
+            if (q.ray.d == Vec3(0.0f)) q.ray.d = random_dir(g);
+            break;
+        }
+    }
+    return q;
+}
+
+using SetupFamily = Query (*)(Rng&, int);
+struct SetupFamilyEntry {
+    const char* name;
+    SetupFamily make;
+};
+constexpr SetupFamilyEntry kSetupFamilies[] = {
+    {"far-corner", far_corner}, {"far-edge", far_edge},   {"far-aimed", far_aimed},
+    {"light-ray", light_ray},   {"long-dir", long_dir},   {"range-edge", range_edge},
+};
+constexpr std::size_t kSetupFamilyCount = sizeof kSetupFamilies / sizeof kSetupFamilies[0];
+
+// Keeps a set-up query valid: boxes inside the range of COORD_BITS = c,
+// finite origins (the generators make them finite; the clamp is a guard).
+Query fit_range(Query q, int c) {
+    const float lo = -2.0f, hi = range_hi(c);
+    for (int a = 0; a < 3; ++a) {
+        q.box.lo[a] = std::min(hi, std::max(lo, q.box.lo[a]));
+        q.box.hi[a] = std::min(hi, std::max(lo, q.box.hi[a]));
+        if (q.box.lo[a] > q.box.hi[a]) std::swap(q.box.lo[a], q.box.hi[a]);
+    }
+    if (q.ray.d.x == 0.0f && q.ray.d.y == 0.0f && q.ray.d.z == 0.0f) q.ray.d.z = 1.0f;
+    if (!(q.ray.tmax >= 0.0f)) q.ray.tmax = kInf;
+    return q;
+}
+
 }  // namespace
 
 std::vector<Query> random_queries(std::uint64_t seed, std::size_t n) {
@@ -445,5 +716,27 @@ std::vector<Query> extreme_queries(std::uint64_t seed, std::size_t n, std::vecto
 std::size_t extreme_family_count() { return kFamilyCount; }
 
 const char* extreme_family_name(std::size_t i) { return i < kFamilyCount ? kFamilies[i].name : "?"; }
+
+std::vector<Query> setup_queries(std::uint64_t seed, std::size_t n, int coord_bits, std::vector<std::size_t>* families) {
+    if (coord_bits < 6 || coord_bits > 24)
+        throw InputError("setup_queries: COORD_BITS = " + std::to_string(coord_bits) + " is outside 6..24");
+    Rng g(seed ^ 0x5345545550513121ull ^ (static_cast<std::uint64_t>(coord_bits) << 56));
+    std::vector<Query> out;
+    out.reserve(n);
+    if (families) {
+        families->clear();
+        families->reserve(n);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t f = i % kSetupFamilyCount;
+        out.push_back(fit_range(kSetupFamilies[f].make(g, coord_bits), coord_bits));
+        if (families) families->push_back(f);
+    }
+    return out;
+}
+
+std::size_t setup_family_count() { return kSetupFamilyCount; }
+
+const char* setup_family_name(std::size_t i) { return i < kSetupFamilyCount ? kSetupFamilies[i].name : "?"; }
 
 }  // namespace pluecker

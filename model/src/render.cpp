@@ -295,6 +295,7 @@ Vec3 render_pixel(const Shader& sh, const Tracer& tr, int x, int y, PixelTree& t
             n.occluded = tr.occluded(n.ray, st.traversal);
         else
             n.hit = tr.closest(n.ray, st.traversal);
+        st.hits[static_cast<int>(n.kind)] += n.kind == RayKind::Shadow ? n.occluded : n.hit.found();
         sh.expand(tree, i);
     }
     return sh.evaluate(tree, 0);
@@ -323,7 +324,10 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 }
 
 void add_stats(RenderStats& a, const RenderStats& b) {
-    for (int k = 0; k < kRayKinds; ++k) a.rays[k] += b.rays[k];
+    for (int k = 0; k < kRayKinds; ++k) {
+        a.rays[k] += b.rays[k];
+        a.hits[k] += b.hits[k];
+    }
     a.traversal += b.traversal;
 }
 
@@ -445,6 +449,7 @@ Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEng
             tree[i].occluded = r.hit.found();
         else
             tree[i].hit = r.hit;
+        st.hits[static_cast<int>(tree[i].kind)] += r.hit.found();
         const std::size_t before = tree.size();
         sh.expand(tree, i);
         if (tree.size() >= (std::size_t{1} << kNodeBits)) throw std::logic_error("render: ray tree too large");
@@ -517,6 +522,14 @@ nlohmann::json stats_json(const RenderScene& scene, const Bvh& bvh, BuildMethod 
     }
     rays["total"] = total;
     j["rays"] = rays;
+    nlohmann::json hits;
+    total = 0;
+    for (int k = 0; k < kRayKinds; ++k) {
+        hits[ray_kind_name(static_cast<RayKind>(k))] = st.hits[k];
+        total += st.hits[k];
+    }
+    hits["total"] = total;
+    j["hits"] = hits;
     j["node_visits"] = st.traversal.node_visits;
     j["box_tests"] = st.traversal.box_tests;
     j["triangle_tests"] = st.traversal.tri_tests;

@@ -134,6 +134,13 @@ RenderOptions fixed_options(const RenderOptions& base, WidthPair w, FixedMode m)
     return o;
 }
 
+// The fixed-point answer for a float ray on an already quantised box: a
+// miss when the ray never meets the range cube.
+bool setup_hit(const Ray& r, const FixedBox& b, const FixedFormat& f) {
+    const std::optional<FixedRay> fr = fixed_setup_ray(r, f);
+    return fr && fixed_hit(*fr, b, f);
+}
+
 // Answers every query with exact_hit; evaluates the float tests and every
 // width pair on the same query.
 class ReferenceEngine final : public BoxEngine {
@@ -165,11 +172,11 @@ public:
             for (std::size_t k = 0; k < formats_.size(); ++k) {
                 const Format& f = formats_[k];
                 WidthQueries& wq = queries[k];
-                const bool c = fixed_hit(fixed_setup_ray(q.ray, f.cons), f.cons_boxes[node], f.cons);
+                const bool c = setup_hit(q.ray, f.cons_boxes[node], f.cons);
                 wq.conservative.add(exact, c);
                 wq.fixed_hit_pluecker_miss += c && !pl;
                 wq.fixed_miss_pluecker_hit += !c && pl;
-                wq.nearest.add(exact, fixed_hit(fixed_setup_ray(q.ray, f.near), f.near_boxes[node], f.near));
+                wq.nearest.add(exact, setup_hit(q.ray, f.near_boxes[node], f.near));
             }
         }
     }

@@ -154,29 +154,20 @@ void Accel::quantize(const FixedFormat& f) {
 // ---------------------------------------------------------------------------
 // Fixed policy
 
-float clipped_tmax(float t, float t0, float current) {
-    if (!std::isfinite(t)) return current;
-    float r = std::nextafter(static_cast<float>(static_cast<double>(t) - static_cast<double>(t0)), kInf);
-    if (r < 0.0f) r = 0.0f;
-    return r < current ? r : current;
-}
-
 FixedPolicy::State FixedPolicy::setup(const Ray& r) const {
     State st;
-    const auto c = fixed_clip_ray(r);
-    if (!c) return st;
-    st.clipped = c->ray;
-    st.t0 = c->t0;
-    st.fr = fixed_setup_ray(st.clipped, accel->format);
+    const std::optional<FixedRay> fr = fixed_setup_ray(r, accel->format);
+    if (!fr) return st;
+    st.ray = r;
+    st.fr = *fr;
     st.live = true;
     return st;
 }
 
 void FixedPolicy::shrink(State& st, float t) const {
-    const float m = clipped_tmax(t, st.t0, st.clipped.tmax);
-    if (m == st.clipped.tmax) return;
-    st.clipped.tmax = m;
-    st.fr = fixed_setup_ray(st.clipped, accel->format);
+    if (!(t < st.ray.tmax)) return;
+    st.ray.tmax = t;
+    fixed_setup_end(st.fr, st.ray, accel->format);
 }
 
 // ---------------------------------------------------------------------------
@@ -309,7 +300,7 @@ void RayTraversal::start(const Ray& r, bool any_hit) {
 
 void RayTraversal::emit(std::uint32_t node, std::size_t slot) {
     BoxQuery& q = queries_[slot];
-    q.query = Query{state_.clipped, accel_->nodes[node].box};
+    q.query = Query{state_.ray, accel_->nodes[node].box};
     q.ray = state_.fr;
     q.box = accel_->qboxes[node];
     q.node = node;

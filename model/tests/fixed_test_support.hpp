@@ -10,6 +10,8 @@
 
 #include <cstddef>
 #include <cstdlib>
+#include <optional>
+#include <stdexcept>
 #include <span>
 #include <string>
 #include <utility>
@@ -21,6 +23,14 @@ namespace pluecker::test_support {
 inline bool long_run() {
     const char* e = std::getenv("PLUECKER_LONG");
     return e && *e && std::string(e) != "0";
+}
+
+// fixed_setup_ray for a ray that meets the range cube (every ray of these
+// suites starts inside it); std::logic_error when it does not.
+inline FixedRay setup_ray(const Ray& r, const FixedFormat& f) {
+    const std::optional<FixedRay> fr = fixed_setup_ray(r, f);
+    if (!fr) throw std::logic_error("test ray never meets the range cube");
+    return *fr;
 }
 
 inline FixedFormat format(int c, int d, FixedMode m = FixedMode::Conservative) {

@@ -123,15 +123,28 @@ TEST(CliQuery, BadFilesNameTheLine) {
         }
 }
 
-TEST(CliQuery, FixedRangeErrorNamesTheLine) {
-    // Valid for the float tests, outside [-2, 2) for the fixed-point format.
+TEST(CliQuery, FixedTakesAnyFiniteOrigin) {
+    // The second ray starts at x = 3, outside the fixed-point range: the
+    // set-up clips it onto the range, as the renderer does.
     const CliRun ok = query_cli("--test exact " + data("fixed_range.txt"));
     EXPECT_EQ(ok.status, 0) << ok.err;
     EXPECT_EQ(ok.out, "1\n1\n");
     const CliRun r = query_cli("--test fixed " + data("fixed_range.txt"));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.out, "1\n1\n");
+}
+
+TEST(CliQuery, FixedBoxRangeErrorNamesTheLineAndTheLimit) {
+    // Valid for the float tests; the box of line 3 reaches x = 2, past the
+    // last coordinate of COORD_BITS = 6 (2 - 2^-4 = 1.9375).
+    const CliRun ok = query_cli("--test exact " + data("fixed_box_range.txt"));
+    EXPECT_EQ(ok.status, 0) << ok.err;
+    const CliRun r = query_cli("--test fixed --coord-bits 6 " + data("fixed_box_range.txt"));
     EXPECT_EQ(r.status, 2);
     EXPECT_EQ(r.out, "");
-    EXPECT_NE(r.err.find((kData / "fixed_range.txt").string() + ":2: "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find((kData / "fixed_box_range.txt").string() + ":3: box x extent [0, 2]"), std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("outside the fixed-point range [-2, 1.9375] of COORD_BITS = 6"), std::string::npos) << r.err;
 }
 
 TEST(CliQuery, OptionErrors) {

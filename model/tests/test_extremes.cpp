@@ -43,6 +43,7 @@ namespace pluecker {
 namespace {
 
 using test_support::format;
+using test_support::setup_ray;
 using test_support::long_run;
 using test_support::Tally;
 
@@ -300,7 +301,7 @@ TEST(Extremes, TinyDirectionRatiosRoundToZero) {
                         Ray r;
                         r.o = Vec3(0.0f);
                         r.d = Vec3(x, -x, m);
-                        const FixedRay q = fixed_setup_ray(r, f);
+                        const FixedRay q = setup_ray(r, f);
                         ++cases;
                         if (q.dir[0] != 0 || q.dir[1] != 0) {
                             if (++wrong <= 5)

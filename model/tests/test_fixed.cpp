@@ -18,6 +18,7 @@ namespace {
 
 using test_support::for_each_lattice_ray;
 using test_support::format;
+using test_support::setup_ray;
 using test_support::lattice_boxes;
 using test_support::long_run;
 using test_support::Tally;
@@ -46,13 +47,13 @@ TEST(FixedSetup, DirectionScaledSoLargestIsOne) {
     Ray r;
     r.o = Vec3(0.0f);
     r.d = Vec3(-3e-30f, 1.5e-30f, 0.0f);
-    const FixedRay q = fixed_setup_ray(r, f);
+    const FixedRay q = setup_ray(r, f);
     EXPECT_EQ(q.dir[0], f.dir_one());
     EXPECT_EQ(q.dir[1], f.dir_one() / 2);
     EXPECT_EQ(q.dir[2], 0);
     EXPECT_EQ(q.cls, 1u);  // x negative only
     r.d = Vec3(1e30f, -0.0f, 2e30f);
-    const FixedRay p = fixed_setup_ray(r, f);
+    const FixedRay p = setup_ray(r, f);
     EXPECT_EQ(p.dir[2], f.dir_one());
     EXPECT_EQ(p.dir[0], f.dir_one() / 2);
     EXPECT_EQ(p.cls, 2u);  // -0 counts as negative
@@ -66,10 +67,17 @@ TEST(FixedSetup, RejectsBadRaysAndBoxes) {
     r.d = Vec3(NAN, 1.0f, 0.0f);
     EXPECT_THROW(fixed_setup_ray(r, f), InputError);
     r.d = Vec3(1.0f, 0.0f, 0.0f);
-    r.o = Vec3(2.0f, 0.0f, 0.0f);  // 2.0 is just outside [-2, 2)
+    r.o = Vec3(kInf, 0.0f, 0.0f);
     EXPECT_THROW(fixed_setup_ray(r, f), InputError);
+    r.o = Vec3(2.0f, 0.0f, 0.0f);  // outside the range, moving away: never meets it
+    EXPECT_FALSE(fixed_setup_ray(r, f).has_value());
+    r.d = Vec3(-1.0f, 0.0f, 0.0f);  // moving back: clipped onto the face x = 2 - 2^-14
+    const auto c = fixed_setup_ray(r, f);
+    ASSERT_TRUE(c.has_value());
+    EXPECT_TRUE(c->clipped);
+    EXPECT_EQ(c->org[0], f.coord_max());
     r.o = Vec3(-2.0f, 0.0f, 0.0f);
-    EXPECT_NO_THROW(fixed_setup_ray(r, f));
+    EXPECT_FALSE(setup_ray(r, f).clipped);
     Box b;
     b.lo = Vec3(0.0f);
     b.hi = Vec3(3.0f, 0.0f, 0.0f);
@@ -82,9 +90,9 @@ TEST(FixedSetup, SegmentEndOutOfRangeFallsBackToUnboundedRay) {
     r.o = Vec3(0.0f);
     r.d = Vec3(1.0f, 0.0f, 0.0f);
     r.tmax = 10.0f;
-    EXPECT_FALSE(fixed_setup_ray(r, f).has_end);
+    EXPECT_FALSE(setup_ray(r, f).has_end);
     r.tmax = 0.5f;
-    const FixedRay q = fixed_setup_ray(r, f);
+    const FixedRay q = setup_ray(r, f);
     EXPECT_TRUE(q.has_end);
     EXPECT_EQ(q.end[0], 1 << 13);  // 0.5 * 2^(16-2)
 }
@@ -162,7 +170,7 @@ TEST(FixedVsExact, Exhaustive6x6ConstrainedDomain) {
     for (const Box& b : boxes) qboxes.push_back(fixed_quantize_box(b, f));
     Tally t;
     for_each_lattice_ray(coords, dirs, tmaxes, [&](const Ray& r) {
-        const FixedRay fr = fixed_setup_ray(r, f);
+        const FixedRay fr = setup_ray(r, f);
         for (std::size_t k = 0; k < boxes.size(); ++k) {
             const bool e = exact_hit(r, boxes[k]);
             const bool h = fixed_hit(fr, qboxes[k], f);

@@ -58,6 +58,7 @@ namespace {
 
 using test_support::for_each_lattice_ray;
 using test_support::format;
+using test_support::setup_ray;
 using test_support::lattice_boxes;
 using test_support::long_run;
 using test_support::Tally;
@@ -309,7 +310,7 @@ TEST(MarginBound, RaysThroughEdgesAndCornersAtRoundingTies) {
                                         const bool exact = exact_hit(q.ray, q.box);
                                         ASSERT_TRUE(exact) << "construction does not touch the box: "
                                                            << SlackStats::describe(q, Terms{}, Margin::Full);
-                                        const FixedRay r = fixed_setup_ray(q.ray, f);
+                                        const FixedRay r = setup_ray(q.ray, f);
                                         const FixedBox b = fixed_quantize_box(q.box, f);
                                         st.add(q, r, b, f, exact);
                                         const Terms t = terms(r, b);
@@ -452,7 +453,7 @@ TEST(MarginBound, Exhaustive6x6LatticeSlackAndReducedMargins) {
                 }
                 if (check) {
                     ++checked;
-                    const FixedRay r2 = fixed_setup_ray(q.ray, f);
+                    const FixedRay r2 = setup_ray(q.ray, f);
                     const FixedBox b2 = fixed_quantize_box(q.box, f);
                     setup_mismatch += r2.cls != r.cls || r2.org != r.org || r2.dir != r.dir || r2.has_end ||
                                       b2.lo != b.lo || b2.hi != b.hi;
@@ -490,7 +491,7 @@ TEST(MarginBound, SlackOfEveryRealHitIsAtLeastOne) {
         const FixedFormat f = format(c, d);
         SlackStats st;
         for (std::size_t k = 0; k < qs.size(); ++k)
-            st.add(qs[k], fixed_setup_ray(qs[k].ray, f), fixed_quantize_box(qs[k].box, f), f, exact[k]);
+            st.add(qs[k], setup_ray(qs[k].ray, f), fixed_quantize_box(qs[k].box, f), f, exact[k]);
         char what[32];
         std::snprintf(what, sizeof what, "generated %d/%d", c, d);
         st.print(what);
@@ -526,7 +527,7 @@ void exhaustive_float_domain(int c, int d, bool big) {
     for_each_lattice_ray(coords, dirs, tmaxes, [&](const Ray& ray) {
         Query q;
         q.ray = ray;
-        const FixedRay r = fixed_setup_ray(q.ray, f);
+        const FixedRay r = setup_ray(q.ray, f);
         for (std::size_t k = 0; k < boxes.size(); ++k) {
             q.box = boxes[k];
             st.add(q, r, qboxes[k], f, exact_hit(q.ray, q.box));

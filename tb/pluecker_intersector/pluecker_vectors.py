@@ -56,20 +56,20 @@ def _fixed_vector(ray: pp.FixedRay, box: pp.FixedBox, fmt: pp.FixedFormat, what:
 
 
 def from_queries(queries: list, fmt: pp.FixedFormat, origin: str) -> Stimulus:
-    """Float queries -> vectors, through the renderer's fixed-point path:
-    clip the ray to the representable cube, set up, quantise the box."""
+    """Float queries -> vectors, through the renderer's fixed-point set-up:
+    any finite origin (clipped exactly onto the range cube when outside it),
+    the box quantised."""
     vectors: list[Vector] = []
     skipped = 0
     for k, q in enumerate(queries):
-        clipped = pp.fixed_clip_ray(q.ray)
-        if clipped is None:
-            skipped += 1  # never reaches the cube: no RTL query
-            continue
         try:
-            ray = pp.fixed_setup_ray(clipped.ray, fmt)
             box = pp.fixed_quantize_box(q.box, fmt)
         except pp.InputError:
-            skipped += 1  # box or origin outside the fixed-point range
+            skipped += 1  # box outside the fixed-point range
+            continue
+        ray = pp.fixed_setup_ray(q.ray, fmt)
+        if ray is None:
+            skipped += 1  # never meets the range cube: a miss without an RTL query
             continue
         vectors.append(_fixed_vector(ray, box, fmt, lambda q=q, k=k: f"{origin} query #{k}: {q.line()}"))
     return Stimulus(vectors, skipped, origin)
@@ -81,6 +81,13 @@ def random_stimulus(fmt: pp.FixedFormat, seed: int, n: int) -> Stimulus:
 
 def extreme_stimulus(fmt: pp.FixedFormat, seed: int, n: int) -> Stimulus:
     return from_queries(pp.extreme_queries(seed, n), fmt, f"extreme_queries(seed={seed}, n={n})")
+
+
+def setup_stimulus(fmt: pp.FixedFormat, seed: int, n: int) -> Stimulus:
+    """Rays from anywhere (far cameras and lights, long directions, the range
+    cube's edges) into boxes of the format's range, through the set-up."""
+    return from_queries(pp.setup_queries(seed, n, fmt.coord_bits), fmt,
+                        f"setup_queries(seed={seed}, n={n}, coord_bits={fmt.coord_bits})")
 
 
 def trace_stimulus(fmt: pp.FixedFormat, seed: int, n: int, work_dir: Path) -> Stimulus:
@@ -272,6 +279,8 @@ def make_stimulus(source: str, fmt: pp.FixedFormat, seed: int, n: int, work_dir:
         return extreme_stimulus(fmt, seed, n)
     if source == "trace":
         return trace_stimulus(fmt, seed, n, work_dir)
+    if source == "setup":
+        return setup_stimulus(fmt, seed, n)
     if source == "raw":
         return raw_stimulus(fmt, seed, n)
     if source == "boundary":

@@ -278,7 +278,7 @@ if cocotb is not None:
 
     @cocotb.test()
     @cocotb.parametrize(
-        source=["random", "extreme", "raw", "boundary", "trace"],
+        source=["random", "extreme", "raw", "boundary", "setup", "trace"],
         idle=[False, True],
         backpressure=[False, True],
     )

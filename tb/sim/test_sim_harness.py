@@ -1,9 +1,11 @@
 # SPDX-License-Identifier: MIT
-"""The Verilator harness (sim/): builds pluecker_sim for 16/16 conservative and
-checks that the RTL agrees with the golden model: a hardware-in-the-loop render
-must be byte-identical to `pluecker render --test fixed`, query mode --check
-must find no mismatch on a render trace and on random + extreme queries, and
-bad input must exit 2.
+"""The Verilator harness (sim/): builds pluecker_sim for 16/16, 23/23 and 24/24
+conservative and checks that the RTL agrees with the golden model: a
+hardware-in-the-loop render must be byte-identical to `pluecker render --test
+fixed` (and, with the camera far outside the scene at 23/23 and 24/24, to the
+exact render), query mode --check must find no mismatch on a render trace, on
+random + extreme queries and on the set-up families (rays from anywhere, no
+real hit lost against exact), and bad input must exit 2.
 
 A second build, 24/24 nearest (wide VlWide ports, no margin), costs another
 Verilator compile; it runs when PLUECKER_SIM_WIDE=1 (`make sim-query
@@ -29,10 +31,8 @@ RTL = ROOT / "rtl" / "pluecker_intersector.sv"
 
 def build_sim(coord_bits, dir_bits, mode):
     """Builds (or finds up to date) the harness; a lock keeps xdist workers apart."""
-    if not RTL.exists():
-        pytest.skip(f"{RTL} not written yet")
-    if not (MODEL_BUILD / "libpluecker_model.a").exists():
-        pytest.skip(f"model library not built in {MODEL_BUILD}")
+    assert RTL.exists(), f"{RTL} is missing"
+    assert (MODEL_BUILD / "libpluecker_model.a").exists(), f"model library not built in {MODEL_BUILD} (make build)"
     suffix = "_nearest" if mode == "nearest" else ""
     out = ROOT / "build" / "sim" / f"{coord_bits}x{dir_bits}{suffix}"
     out.mkdir(parents=True, exist_ok=True)
@@ -79,8 +79,6 @@ def test_query_check_render_trace(sim16, tmp_path):
     trace = tmp_path / "trace.txt"
     t = run([CLI, "trace", "--scene", "teapot", "--size", "32", "--test", "fixed", "--order", "dsa",
              "--out", trace])
-    if t.returncode != 0 and "not built yet" in t.stderr:
-        pytest.skip("pluecker trace not implemented yet")
     assert t.returncode == 0, t.stdout + t.stderr
     r = run([sim16, "query", "--check", trace])
     assert r.returncode == 0, r.stderr
@@ -97,7 +95,7 @@ def test_query_check_generated(sim16, tmp_path):
     assert g.returncode == 0, g.stderr
     r = run([sim16, "query", "--check", q])
     assert r.returncode == 0, r.stderr
-    assert "40000 queries, 0 mismatches" in r.stderr
+    assert "40000 queries" in r.stderr and " 0 mismatches" in r.stderr, r.stderr
     answers = r.stdout.splitlines()
     assert len(answers) == 40000 and set(answers) == {"0", "1"}
 
@@ -120,12 +118,13 @@ def test_bad_input(sim16, tmp_path):
     expect2(["query", "--coord-bits", "5", tmp_path / "missing.txt"], "6..24")
     expect2(["render", "--size", "16", "--test", "smits"], "fixed-point test only")
     expect2(["frobnicate"], "unknown command")
-    # An origin outside [-2, 2): the same message and status as the CLI.
+    # A box past the range of the build: the same message and status as the CLI.
     bad = tmp_path / "bad.txt"
-    bad.write_text("0 0 0 0 0 1 inf -1 -1 -1 1 1 1\n2.5 0 0 1 0 0 inf -1 -1 -1 1 1 1\n")
+    bad.write_text("0 0 0 0 0 1 inf -1 -1 -1 1 1 1\n2.5 0 0 1 0 0 inf -1 -1 -1 2 1 1\n")
     r = run([sim16, "query", bad])
     assert r.returncode == 2
-    assert f"{bad}:2: ray origin x = 2.5 is outside" in r.stderr
+    assert f"{bad}:2: box x extent [-1, 2] is outside the fixed-point range [-2, 1.99993896] of COORD_BITS = 16" \
+        in r.stderr
     m = run([CLI, "query", "--test", "fixed", bad])
     assert m.returncode == 2
     assert r.stderr.split("error: ", 1)[1] == m.stderr.split("error: ", 1)[1]
@@ -133,6 +132,67 @@ def test_bad_input(sim16, tmp_path):
     env = dict(os.environ, COORD_BITS="5", MODEL_BUILD=str(MODEL_BUILD))
     b = run([ROOT / "scripts" / "venv-exec.sh", ROOT / "sim" / "build.sh"], env=env)
     assert b.returncode == 2 and "COORD_BITS=5" in b.stderr
+
+
+@pytest.fixture(scope="module", params=[(23, 23), (24, 24)], ids=["23x23", "24x24"])
+def sim_wide(request):
+    c, d = request.param
+    return c, d, build_sim(c, d, "conservative")
+
+
+def false_misses(exact: str, answers: str) -> tuple[int, int]:
+    """(real hits, real hits the answers miss) of two 1/0-a-line outputs."""
+    pairs = list(zip(exact.split(), answers.split()))
+    assert len(pairs) == len(exact.split()) == len(answers.split())
+    return sum(e == "1" for e, _ in pairs), sum(e == "1" and a == "0" for e, a in pairs)
+
+
+@pytest.mark.parametrize("c,d", [(16, 16), (23, 23), (24, 24)])
+def test_query_check_setup_families(tmp_path, c, d):
+    """Rays from anywhere (far cameras and lights, long directions, the range
+    cube's edges) through the RTL's query mode: the model's set-up, 0
+    mismatches, and no real hit lost against exact."""
+    sim = build_sim(c, d, "conservative")
+    q = tmp_path / "setup.txt"
+    g = run([sim, "gen", "--n", "20000", "--kind", "setup", "--seed", str(c), "--out", q])
+    assert g.returncode == 0, g.stderr
+    r = run([sim, "query", "--check", q])
+    assert r.returncode == 0, r.stderr
+    assert "20000 queries" in r.stderr and " 0 mismatches" in r.stderr, r.stderr
+    m = run([CLI, "query", "--test", "fixed", "--coord-bits", c, "--dir-bits", d, q])
+    assert m.returncode == 0, m.stderr
+    assert r.stdout == m.stdout
+    e = run([CLI, "query", "--test", "exact", q])
+    assert e.returncode == 0, e.stderr
+    hits, lost = false_misses(e.stdout, r.stdout)
+    print(f"{c}/{d}: {r.stderr.strip()}; {hits} real hits, {lost} lost")
+    assert hits > 5000 and lost == 0
+
+
+def test_far_camera_render(sim_wide, tmp_path):
+    """The camera 1,400 units away: the hardware-in-the-loop render equals the
+    model's byte for byte and the exact render's, with the same hits."""
+    c, d, sim = sim_wide
+    view = ["--scene", "teapot", "--eye", "600,800,-1000", "--look", "0,0,0", "--fov", "0.09", "--size", "64",
+            "--order", "dsa", "--quiet"]
+    r = run([sim, "render", *view, "--out", tmp_path / "rtl.png", "--stats", tmp_path / "rtl.json"])
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert " 0 mismatches" in r.stdout
+    outs = {}
+    for test, extra in (("fixed", ["--coord-bits", str(c), "--dir-bits", str(d)]), ("exact", [])):
+        m = run([CLI, "render", "--test", test, *extra, *view, "--out", tmp_path / f"{test}.png",
+                 "--stats", tmp_path / f"{test}.json"])
+        assert m.returncode == 0, m.stdout + m.stderr
+        outs[test] = json.loads((tmp_path / f"{test}.json").read_text())
+    assert (tmp_path / "rtl.png").read_bytes() == (tmp_path / "fixed.png").read_bytes(), "RTL render differs"
+    assert (tmp_path / "fixed.png").read_bytes() == (tmp_path / "exact.png").read_bytes(), \
+        "the fixed-point render lost a hit the exact render finds"
+    rtl = json.loads((tmp_path / "rtl.json").read_text())
+    exact_hits, fixed_hits = outs["exact"]["hits"], rtl["hits"]
+    lost = {k: exact_hits[k] - fixed_hits[k] for k in exact_hits}
+    print(f"{c}/{d} far camera: {rtl['rtl']['queries']} RTL queries, hits {fixed_hits}, lost against exact {lost}")
+    assert fixed_hits == exact_hits and fixed_hits["camera"] > 1000
+    assert rtl["rtl"]["mismatches"] == 0 and rtl["rtl"]["queries"] == outs["fixed"]["box_tests"]
 
 
 @pytest.mark.skipif(os.environ.get("PLUECKER_SIM_WIDE") != "1", reason="set PLUECKER_SIM_WIDE=1 (second Verilator build)")
@@ -143,6 +203,6 @@ def test_wide_ports_nearest(tmp_path):
     assert run([sim, "gen", "--n", "20000", "--kind", "mixed", "--seed", "3", "--out", q]).returncode == 0
     r = run([sim, "query", "--check", q])
     assert r.returncode == 0, r.stderr
-    assert "20000 queries, 0 mismatches" in r.stderr
+    assert "20000 queries" in r.stderr and " 0 mismatches" in r.stderr, r.stderr
     m = run([CLI, "query", "--test", "fixed", "--coord-bits", "24", "--dir-bits", "24", "--mode", "nearest", q])
     assert m.returncode == 0 and r.stdout == m.stdout

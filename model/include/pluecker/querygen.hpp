@@ -3,9 +3,10 @@
 // the fixed-point tests, the cocotb benches and the RTL stress runs.
 //
 // The same seed gives the same queries on every platform (own PRNG, no
-// std:: distributions). Every query is valid (validate_query accepts it),
-// and every origin and box plane lies in [-1, 1], so the fixed-point format
-// (range [-2, 2)) can take them all.
+// std:: distributions). Every query is valid (validate_query accepts it).
+// random_queries and extreme_queries keep every origin and box plane in
+// [-1, 1]; setup_queries sends rays from anywhere into boxes of one
+// fixed-point range.
 #pragma once
 
 #include "pluecker/geometry.hpp"
@@ -34,5 +35,26 @@ std::vector<Query> extreme_queries(std::uint64_t seed, std::size_t n,
 std::size_t extreme_family_count();
 // Short name of family i ("axis-parallel", ...); "?" when i is out of range.
 const char* extreme_family_name(std::size_t i);
+
+// The rays a renderer traces, from anywhere, into boxes of the fixed-point
+// range of COORD_BITS = coord_bits (every box inside [-2, 2 - 2^(2-C)]^3;
+// origins anywhere finite): the families of fixed.hpp's ray set-up.
+// Query k belongs to family k % setup_family_count():
+//   far-corner, far-edge  cameras and lights up to 1e6 away through a box
+//                         corner or edge exactly, then one ulp off on a
+//                         direction component or a box plane;
+//   far-aimed             far cameras aimed in float at edges and corners;
+//   light-ray             shadow rays to far lights, and rays from the
+//                         light ending exactly on the entry face it sees;
+//   long-dir              |d| up to ~100, segments ending exactly on the
+//                         entry face or one ulp before or after it;
+//   range-edge            origins on the range cube's faces or one ulp
+//                         outside, rays along a face, rays through the
+//                         cube's edges, boxes touching the range limits.
+// InputError when coord_bits is outside 6..24.
+std::vector<Query> setup_queries(std::uint64_t seed, std::size_t n, int coord_bits,
+                                 std::vector<std::size_t>* families = nullptr);
+std::size_t setup_family_count();
+const char* setup_family_name(std::size_t i);
 
 }  // namespace pluecker

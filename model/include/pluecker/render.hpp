@@ -89,6 +89,7 @@ struct RenderOptions {
 
 struct RenderStats {
     std::array<std::uint64_t, kRayKinds> rays{};  // by RayKind
+    std::array<std::uint64_t, kRayKinds> hits{};  // rays that hit (shadow: occluded), by RayKind
     TraversalStats traversal;
     BatchStats batch;  // the batched path only
     double render_ms = 0;

@@ -4,17 +4,18 @@
 // measured on a render of a scene (`pluecker study`, `pluecker plan`).
 //
 // The reference traversal
-//   The fixed-point path (traverse.hpp) clips every ray to the cube of
-//   fixed_clip_ray and issues its box queries on the clipped ray. The
-//   reference is that same batched traversal (render_batched, same pixels,
-//   same ray trees, same clipping) with every box query answered by
-//   exact_hit on the query's float ray and box: an exact test in place of
-//   the RTL. Its box queries are the queries the hardware would see if it
-//   answered exactly; every per-query figure is measured on them, and every
-//   traversal figure is compared with its counts. (The direct exact render,
-//   render_direct with the exact test on the unclipped rays, is reported
+//   The fixed-point path (traverse.hpp) sets every ray up once (a ray
+//   from outside the range cube is clipped exactly onto it, one that misses
+//   the cube is not traced) and issues its box queries on the ray as given,
+//   tmax shrunk to the best hit. The reference is that same batched
+//   traversal (render_batched, same pixels, same ray trees) with every box
+//   query answered by exact_hit on the query's float ray and box: an exact
+//   test in place of the RTL. Its box queries are the queries the hardware
+//   would see if it answered exactly; every per-query figure is measured on
+//   them, and every traversal figure is compared with its counts. (The
+//   direct exact render, render_direct with the exact test, is reported
 //   beside it: same image, and box tests that differ only by the root test
-//   of rays that miss the clip cube, which the fixed-point path skips.)
+//   of rays that miss the range cube, which the fixed-point path skips.)
 //
 // Per query (on the reference's box queries)
 //   For each width pair and mode, fixed_setup_ray + fixed_quantize_box +

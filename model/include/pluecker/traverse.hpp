@@ -28,10 +28,11 @@
 // exact test and the fixed-point test (fixed or dsa order).
 //
 // Fixed-point path
-//   Every ray is first clipped to the cube of fixed_clip_ray (fixed.hpp); a
-//   ray that misses the cube hits nothing. The box tests see the clipped ray
-//   (its tmax, when shrunk to a hit at t, becomes t - t0 rounded up); the
-//   triangle tests and hit distances use the original ray.
+//   Every ray is set up once by fixed_setup_ray (fixed.hpp): a ray from
+//   outside the range cube is clipped exactly onto it, a ray that misses
+//   the cube hits nothing. Shrinking tmax to a hit at t recomputes only the
+//   segment end, from the ray as given (fixed_setup_end). Box queries are
+//   recorded with the ray as given and its current tmax.
 #pragma once
 
 #include "pluecker/boxtest.hpp"
@@ -431,17 +432,12 @@ struct ExactPolicy {
     Ray query_ray(const State& st) const { return st.ray; }
 };
 
-// The clipped-ray tmax for a hit at distance t of the original ray:
-// t - t0 rounded up, never above the current value.
-float clipped_tmax(float t, float t0, float current);
-
 struct FixedPolicy {
     static constexpr bool kDistance = false;
     explicit FixedPolicy(const Accel& a) : accel(&a) {}
     const Accel* accel;
     struct State {
-        Ray clipped;
-        float t0 = 0.0f;
+        Ray ray;  // the ray as given, tmax shrunk to the best hit
         FixedRay fr;
         bool live = false;
     };
@@ -452,7 +448,7 @@ struct FixedPolicy {
     bool hit(const State& st, std::uint32_t node, const Box&, float*) const {
         return fixed_hit(st.fr, accel->qboxes[node], accel->format);
     }
-    Ray query_ray(const State& st) const { return st.clipped; }
+    Ray query_ray(const State& st) const { return st.ray; }
 };
 
 // Wraps a policy and appends every query it answers to *out.
@@ -750,8 +746,8 @@ std::unique_ptr<Tracer> make_tracer(const Accel& a, BoxTestKind t, ChildOrder o,
 
 // One ray/box query as the RTL takes it, plus its float form.
 struct BoxQuery {
-    Query query;         // the clipped ray (tmax as the test sees it) and the node's float box
-    FixedRay ray;        // fixed_setup_ray(query.ray, format)
+    Query query;         // the ray as given (tmax as the test sees it) and the node's float box
+    FixedRay ray;        // *fixed_setup_ray(query.ray, format)
     FixedBox box;        // fixed_quantize_box(query.box, format)
     std::uint32_t node;  // BVH node index of the box
 };
