@@ -45,18 +45,25 @@ Box grid_box(Rng& g) {
     return b;
 }
 
-// A point of the box with `fixed` coordinates on planes (1 face, 2 edge,
-// 3 corner) and the others strictly inside, all on the 2^-8 grid.
-Vec3 point_on_box(Rng& g, const Box& b, int fixed) {
+// A point of the box with `fixed` coordinates, on axes chosen at random, on
+// planes (1 face, 2 edge, 3 corner) and the others inside(axis).
+template <class Inside>
+Vec3 point_on_planes(Rng& g, const Box& b, int fixed, Inside inside) {
     int axes[3] = {0, 1, 2};
     for (int i = 2; i > 0; --i) std::swap(axes[i], axes[g.below(i + 1)]);
     Vec3 p;
     for (int k = 0; k < 3; ++k) {
         const int a = axes[k];
-        if (k < fixed) p[a] = g.coin() ? b.lo[a] : b.hi[a];
-        else p[a] = b.lo[a] + (b.hi[a] - b.lo[a]) * 0.25f * static_cast<float>(1 + g.below(3));
+        p[a] = k < fixed ? (g.coin() ? b.lo[a] : b.hi[a]) : inside(a);
     }
     return p;
+}
+
+// ... the others strictly inside, all on the 2^-8 grid.
+Vec3 point_on_box(Rng& g, const Box& b, int fixed) {
+    return point_on_planes(g, b, fixed, [&](int a) {
+        return b.lo[a] + (b.hi[a] - b.lo[a]) * 0.25f * static_cast<float>(1 + g.below(3));
+    });
 }
 
 // A grid origin different from p.
@@ -457,16 +464,10 @@ Box eighth_box(Rng& g) {
 // A point of b with `fixed` coordinates on planes and the rest on the
 // 2^-3 grid inside (or at the plane when the box is one step wide).
 Vec3 eighth_point_on_box(Rng& g, const Box& b, int fixed) {
-    int axes[3] = {0, 1, 2};
-    for (int i = 2; i > 0; --i) std::swap(axes[i], axes[g.below(i + 1)]);
-    Vec3 p;
-    for (int k = 0; k < 3; ++k) {
-        const int a = axes[k];
+    return point_on_planes(g, b, fixed, [&](int a) {
         const int steps = static_cast<int>(std::ldexp(b.hi[a] - b.lo[a], 3));
-        p[a] = k < fixed ? (g.coin() ? b.lo[a] : b.hi[a])
-                         : b.lo[a] + std::ldexp(static_cast<float>(steps > 1 ? 1 + g.below(steps - 1) : 0), -3);
-    }
-    return p;
+        return b.lo[a] + std::ldexp(static_cast<float>(steps > 1 ? 1 + g.below(steps - 1) : 0), -3);
+    });
 }
 
 // Scales d by 2^s (exact) and returns the t at which the ray meets the
@@ -687,6 +688,24 @@ Query fit_range(Query q, int c) {
     return q;
 }
 
+// n queries, query i from family i % count (make(family) builds one),
+// with the family of each in *families when given.
+template <class Make>
+std::vector<Query> round_robin(std::size_t n, std::size_t count, std::vector<std::size_t>* families, Make make) {
+    std::vector<Query> out;
+    out.reserve(n);
+    if (families) {
+        families->clear();
+        families->reserve(n);
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t f = i % count;
+        out.push_back(make(f));
+        if (families) families->push_back(f);
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<Query> random_queries(std::uint64_t seed, std::size_t n) {
@@ -699,18 +718,7 @@ std::vector<Query> random_queries(std::uint64_t seed, std::size_t n) {
 
 std::vector<Query> extreme_queries(std::uint64_t seed, std::size_t n, std::vector<std::size_t>* families) {
     Rng g(seed ^ 0x45585452454d4521ull);
-    std::vector<Query> out;
-    out.reserve(n);
-    if (families) {
-        families->clear();
-        families->reserve(n);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t f = i % kFamilyCount;
-        out.push_back(fit(kFamilies[f].make(g)));
-        if (families) families->push_back(f);
-    }
-    return out;
+    return round_robin(n, kFamilyCount, families, [&](std::size_t f) { return fit(kFamilies[f].make(g)); });
 }
 
 std::size_t extreme_family_count() { return kFamilyCount; }
@@ -721,18 +729,8 @@ std::vector<Query> setup_queries(std::uint64_t seed, std::size_t n, int coord_bi
     if (coord_bits < 6 || coord_bits > 24)
         throw InputError("setup_queries: COORD_BITS = " + std::to_string(coord_bits) + " is outside 6..24");
     Rng g(seed ^ 0x5345545550513121ull ^ (static_cast<std::uint64_t>(coord_bits) << 56));
-    std::vector<Query> out;
-    out.reserve(n);
-    if (families) {
-        families->clear();
-        families->reserve(n);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t f = i % kSetupFamilyCount;
-        out.push_back(fit_range(kSetupFamilies[f].make(g, coord_bits), coord_bits));
-        if (families) families->push_back(f);
-    }
-    return out;
+    return round_robin(n, kSetupFamilyCount, families,
+                       [&](std::size_t f) { return fit_range(kSetupFamilies[f].make(g, coord_bits), coord_bits); });
 }
 
 std::size_t setup_family_count() { return kSetupFamilyCount; }
