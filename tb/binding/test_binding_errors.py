@@ -128,8 +128,44 @@ def test_fixed_quantize_rejects_bad_boxes(lo, hi):
 
 
 def test_fixed_quantize_rejects_out_of_range_box():
-    with pytest.raises(pp.InputError, match="outside the fixed-point range"):
+    with pytest.raises(pp.InputError, match=r"outside the fixed-point range \[-2, 1.99993896\] of COORD_BITS = 16"):
         pp.fixed_quantize_box(pp.Box((0.0, 0.0, 0.0), (2.0, 1.0, 1.0)), pp.FixedFormat())
+    f6 = pp.FixedFormat(6, 6)
+    assert f6.range_text() == "[-2, 1.9375] of COORD_BITS = 6"
+    assert (f6.coord_lo_value(), f6.coord_hi_value()) == (-2.0, 1.9375)
+    pp.fixed_quantize_box(pp.Box((-2.0, -2.0, -2.0), (1.9375, 1.9375, 1.9375)), f6)  # the range's own corners
+    with pytest.raises(pp.InputError, match=r"box x extent \[0, 1.93750012\] is outside the fixed-point range \[-2, 1.9375\] of COORD_BITS = 6"):
+        pp.fixed_quantize_box(pp.Box((0.0, 0.0, 0.0), (float.fromhex("0x1.f00002p+0"), 1.0, 1.0)), f6)
+
+
+@pytest.mark.parametrize("o", [(INF, 0.0, 0.0), (0.0, NAN, 0.0), (0.0, 0.0, -INF)])
+def test_fixed_setup_rejects_nonfinite_origin(o):
+    with pytest.raises(pp.InputError, match="ray origin . = .* is not finite"):
+        pp.fixed_setup_ray(pp.Ray(o, (0.0, 0.0, 1.0)), pp.FixedFormat())
+
+
+def test_fixed_setup_takes_any_finite_origin():
+    """A camera 1e6 away is clipped onto the range cube; a ray that never
+    meets the cube is None (a miss without an RTL query)."""
+    f = pp.FixedFormat(24, 24)
+    box = pp.Box((-0.25, -0.25, -0.25), (0.25, 0.25, 0.25))
+    towards = pp.Ray((0.0, 0.0, -1e6), (0.0, 0.0, 1.0))
+    r = pp.fixed_setup_ray(towards, f)
+    assert r is not None and r.clipped
+    assert r.org[2] == f.coord_min() and r.org[0] == r.org[1] == 0
+    assert pp.fixed_hit(towards, box, f) and pp.exact_hit(towards, box)
+    away = pp.Ray((0.0, 0.0, -1e6), (0.0, 0.0, -1.0))
+    assert pp.fixed_setup_ray(away, f) is None
+    assert not pp.fixed_hit(away, box, f)
+    # A segment that ends before the range: also a miss.
+    short = pp.Ray((0.0, 0.0, -1e6), (0.0, 0.0, 1.0), 1000.0)
+    assert pp.fixed_setup_ray(short, f) is None
+    # fixed_setup_end shortens the same ray: the origin stays, the end moves.
+    inside = pp.Ray((0.0, 0.0, -1.0), (0.0, 0.0, 1.0))
+    full = pp.fixed_setup_ray(inside, f)
+    ends = pp.fixed_setup_end(full, pp.Ray((0.0, 0.0, -1.0), (0.0, 0.0, 1.0), 0.5), f)
+    assert ends.has_end and ends.org == full.org and not full.has_end
+    assert ends.end[2] == -(1 << 21)  # -0.5 * 2^22
 
 
 def test_fixed_operands_checked_against_the_format():
