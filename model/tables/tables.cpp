@@ -7,8 +7,11 @@
 // Every configuration renders the same image (render.hpp, one thread) and
 // then traces the same recorded rays of that render (camera, shadow,
 // reflection, refraction) without shading. Times are CPU seconds of the
-// working thread, best of --repeat. The four tables print our ratios beside
-// the report's; a report figure not known for a scene prints "n/a".
+// working thread, best of --repeat. The four tables print, per scene, our
+// render-time ratios beside the report's on the same scene (teapot and
+// teapot.obj: Teapot, spheres: Spheres, bunny.ply: Bunny) and ours / report;
+// other scenes print "no report scene", and the report's lowest and highest
+// ratio over all its scenes closes each table.
 // Results: stdout, OUT/tables.json, OUT/tables.md.
 #include "tables_common.hpp"
 
@@ -25,6 +28,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -43,35 +47,91 @@ using namespace pluecker::tables;
 using nlohmann::json;
 
 // ---------------------------------------------------------------------------
-// The report's figures, as its text gives them (sources below). Nothing here
-// is per scene except where the scene is named.
+// The report's figures [R]: J. Mahovsky, technical report, University of
+// Calgary, 2005. Render times are whole-image seconds on the report's own
+// machine (recursive traversal, one thread), so only ratios compare with ours.
 
 constexpr const char* kSourceR =
-    "[R] J. Mahovsky, technical report, University of Calgary, 2005: figures as its text states them (the ranges "
-    "below); its per-table, per-scene numbers are not known to this project and print as n/a";
+    "[R] J. Mahovsky, technical report, University of Calgary, 2005: per-scene render times in seconds of its "
+    "Tables 1-4 (on its own machine; only ratios compare), build times and memory as its text gives them";
 
-struct ReportFigures {
-    // Short forms for the tables' rows, long forms for the notes and JSON.
-    const char* box_test = "1.11-1.25 [R]";
-    const char* box_test_long = "Plücker (pluecker-cls) 11-25% faster than smits-mul-cls over the report's scenes [R]";
-    const char* order = "<=3.4 Powerplant; 0.97-0.99 Branch, Lucy [R]";
-    const char* order_long = "DSA up to 3.4x faster on Powerplant, 1-3% slower on Branch and Lucy [R]";
-    const char* sah_render = "<=2.4 [R]";
-    const char* sah_render_long = "SAH BVH renders up to 2.4x faster than the median BVH [R]";
-    const char* sah_build = "0.014 (12.7M tri); ~0.008 (28M tri) [R]";
-    const char* sah_build_long =
-        "SAH BVH build: 15 minutes for 12.7M triangles (0.014 Mtri/s), nearly an hour for 28M (about 0.008 "
-        "Mtri/s) [R]";
-    const char* kd_build = "10-20 [R]";
-    const char* kd_build_long = "K-D trees build 10-20x slower than BVHs [R]";
-    const char* kd_memory = "> 1 [R]";
-    const char* kd_memory_long = "K-D leaf object lists cost more memory than the K-D nodes [R]";
-    const char* kd_render = "n/a";
-    // Mtri/s of the report's SAH BVH builds.
-    double build_12m_mtri_s = 12.7 / (15.0 * 60.0);
-    double build_28m_mtri_s = 28.0 / (60.0 * 60.0);
+// One scene of [R]: its render time in seconds for each of our
+// configurations (indexed by ConfigId; the report's Tables 1-2 give the
+// first five on the median round-robin BVH, Table 3 pluecker-dsa-sah,
+// Table 4 K-D and K-D-sah). kNotRun: no figure (Lucy's K-D-sah ran out of
+// memory).
+constexpr double kNotRun = -1.0;
+struct ReportScene {
+    const char* name;
+    std::size_t triangles;
+    std::array<double, 8> render_s;  // smits-mul-cls, smits-dist, smits-dsa, pluecker-cls, pluecker-dsa,
+                                     // pluecker-dsa-sah, K-D, K-D-sah
 };
-const ReportFigures kReport;
+const std::array<ReportScene, 9> kReportScenes = {{
+    {"Teapot", 2262, {20.4, 20.2, 19.3, 18.3, 17.9, 14.3, 16.6, 14.4}},
+    {"Spheres", 24578, {24.9, 22.2, 21.5, 22.3, 19.3, 13.5, 17.2, 13.3}},
+    {"Bunny", 69463, {37.5, 38.8, 33.0, 33.3, 30.1, 19.0, 24.7, 21.9}},
+    {"Branch", 312706, {21.8, 21.4, 21.5, 19.1, 19.6, 16.1, 23.9, 17.7}},
+    {"Poppy", 395460, {14.8, 13.2, 13.5, 13.3, 12.3, 10.5, 13.7, 12.3}},
+    {"Powerplant-front", 12748512, {91.5, 42.7, 41.2, 78.9, 37.3, 22.7, 20.8, 14.7}},
+    {"Powerplant-north", 12748512, {264.2, 263.5, 216.7, 210.9, 176.2, 73.4, 87.8, 54.6}},
+    {"Powerplant-boiler", 12748512, {529.2, 157.5, 156.0, 447.3, 130.3, 62.9, 64.0, 42.6}},
+    {"Lucy", 28057792, {62.3, 66.0, 60.4, 53.1, 53.6, 50.5, 58.3, kNotRun}},
+}};
+
+// Build times [R] gives, for its two largest models only (seconds).
+struct ReportBuild {
+    const char* name;
+    std::size_t triangles;
+    double bvh_median_s;  // median BVH
+    double bvh_sah_s;     // SAH BVH: "over 15 minutes" (Powerplant), "nearly an hour" (Lucy)
+    bool sah_at_least;    // bvh_sah_s is a lower bound
+    const char* sah_as_given;
+    double kd_median_s;   // K-D tree (not SAH)
+};
+const std::array<ReportBuild, 2> kReportBuilds = {{
+    {"Powerplant", 12748512, 30.0, 15.0 * 60.0, true, "over 15 minutes", 615.0},
+    {"Lucy", 28057792, 78.0, 60.0 * 60.0, false, "nearly an hour", 736.0},
+}};
+constexpr const char* kReportSahBuildLong =
+    "SAH BVH build: over 15 minutes for Powerplant's 12.7M triangles (under 0.014 Mtri/s), nearly an hour for "
+    "Lucy's 28M (about 0.008 Mtri/s) [R]";
+constexpr const char* kReportKdBuildLong =
+    "K-D tree build (not SAH) against the median BVH: 615 s vs 30 s (Powerplant), 736 s vs 78 s (Lucy) [R]; no "
+    "build figure for the other scenes or for an SAH K-D tree";
+constexpr const char* kReportKdMemory = "> 1 (Powerplant, Lucy) [R]";
+constexpr const char* kReportKdMemoryLong =
+    "K-D memory similar to or greater than the BVH's; on Powerplant and Lucy the K-D leaf object lists took more "
+    "memory than the K-D nodes [R]; no memory figure per scene";
+
+// Our scenes that are [R]'s (by label, and only when the triangle count is
+// within 1% of the report's): the built-in teapot and teapot.obj are
+// Teapot, the built-in spheres (three spheres over a floor, the same count)
+// is Spheres, bunny.ply (the Stanford bunny) is Bunny.
+struct SceneMap {
+    const char* label;
+    const char* report;
+};
+constexpr std::array<SceneMap, 4> kSceneMap = {{
+    {"teapot", "Teapot"}, {"teapot.obj", "Teapot"}, {"spheres", "Spheres"}, {"bunny.ply", "Bunny"}}};
+constexpr const char* kNoReportScene = "no report scene";
+
+const ReportScene* report_scene(const std::string& label, std::size_t triangles) {
+    for (const SceneMap& m : kSceneMap) {
+        if (label != m.label) continue;
+        for (const ReportScene& r : kReportScenes)
+            if (std::string(r.name) == m.report &&
+                std::abs(double(triangles) - double(r.triangles)) <= 0.01 * double(r.triangles))
+                return &r;
+    }
+    return nullptr;
+}
+
+// The report's time ratio num / den on scene r; NaN when one is not known.
+double report_ratio(const ReportScene& r, int num, int den) {
+    const double a = r.render_s[static_cast<std::size_t>(num)], b = r.render_s[static_cast<std::size_t>(den)];
+    return a > 0 && b > 0 ? a / b : std::nan("");
+}
 
 // ---------------------------------------------------------------------------
 // Options
@@ -339,16 +399,74 @@ SceneResult run_scene(const Options& opt, const SceneSpec& spec, const Progress&
 // Tables
 
 std::string ratio(double a, double b) { return b > 0 ? fmt("%.2f", a / b) : "n/a"; }
-// Where our ratio a / b lies against the report's range [lo, hi] over its
-// own scenes (the report's figure for this scene itself is not known).
+// Where our ratio a / b lies against the report's range [lo, hi] (for the
+// figures the report gives only for other scenes than ours).
 std::string versus(double a, double b, double lo, double hi) {
     if (!(b > 0)) return "n/a";
     const double v = a / b;
     return v < lo ? "below" : (v > hi ? "above" : "within");
 }
-std::string per_scene(double a, double b, double lo, double hi) { return "n/a; ours " + versus(a, b, lo, hi); }
 std::string mb(std::size_t bytes) { return fmt("%.1f", static_cast<double>(bytes) / (1024.0 * 1024.0)); }
 std::string ms(double s) { return fmt("%.0f", s * 1e3); }
+
+// One of our time ratios set beside the report's on the same scene.
+struct Comparison {
+    double ours = std::nan("");    // our render-time ratio
+    double report = std::nan("");  // the report's, NaN: no report scene or no figure
+    double quotient() const { return ours / report; }  // ours / report
+};
+Comparison compare(const ReportScene* r, double ours_num_s, double ours_den_s, ConfigId num, ConfigId den) {
+    Comparison c;
+    if (ours_den_s > 0) c.ours = ours_num_s / ours_den_s;
+    if (r) c.report = report_ratio(*r, num, den);
+    return c;
+}
+// The two cells "report" and "ours/report" of a comparison.
+std::array<std::string, 2> cells(const ReportScene* r, const Comparison& c) {
+    if (!r) return {"-", "-"};
+    if (!std::isfinite(c.report)) return {"n/a", "n/a"};
+    return {fmt("%.2f", c.report), std::isfinite(c.quotient()) ? fmt("%.2f", c.quotient()) : "n/a"};
+}
+json to_json(const Comparison& c) {
+    auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+    return {{"ours", num(c.ours)}, {"report", num(c.report)}, {"ours_over_report", num(c.quotient())}};
+}
+
+// The report's ratio num / den over all its scenes: "lo (scene)-hi (scene)".
+std::string report_range(ConfigId num, ConfigId den) {
+    const ReportScene *lo = nullptr, *hi = nullptr;
+    for (const ReportScene& r : kReportScenes) {
+        const double v = report_ratio(r, num, den);
+        if (!std::isfinite(v)) continue;
+        if (!lo || v < report_ratio(*lo, num, den)) lo = &r;
+        if (!hi || v > report_ratio(*hi, num, den)) hi = &r;
+    }
+    return fmt("%.2f", report_ratio(*lo, num, den)) + " (" + lo->name + ")-" + fmt("%.2f", report_ratio(*hi, num, den)) +
+           " (" + hi->name + ")";
+}
+// The report's K-D / median BVH build-time ratios (Powerplant, Lucy): the
+// lowest and the highest.
+double kd_build_ratio(const ReportBuild& b) { return b.kd_median_s / b.bvh_median_s; }
+std::pair<const ReportBuild*, const ReportBuild*> report_kd_build_ends() {
+    const auto [lo, hi] = std::minmax_element(kReportBuilds.begin(), kReportBuilds.end(), [](const auto& x, const auto& y) {
+        return kd_build_ratio(x) < kd_build_ratio(y);
+    });
+    return {&*lo, &*hi};
+}
+std::string report_kd_build() {
+    const auto [lo, hi] = report_kd_build_ends();
+    return fmt("%.1f", kd_build_ratio(*lo)) + " (" + lo->name + ")-" + fmt("%.1f", kd_build_ratio(*hi)) + " (" + hi->name + ")";
+}
+
+// The report scene's cell: its name (with the triangle counts where
+// `with_triangles`), or "no report scene".
+std::string report_scene_cell(const ReportScene* r, std::size_t triangles, bool with_triangles) {
+    if (!r) return kNoReportScene;
+    if (!with_triangles) return r->name;
+    const long d = static_cast<long>(triangles) - static_cast<long>(r->triangles);
+    return std::string(r->name) + " (" + std::to_string(r->triangles) + " tri, " +
+           (d == 0 ? std::string("same") : "ours " + std::string(d > 0 ? "+" : "") + std::to_string(d)) + ")";
+}
 
 struct Table {
     std::string title;
@@ -398,102 +516,204 @@ struct Table {
     }
 };
 
+// Our render-time ratios that the report also gives, per scene.
+struct SceneComparisons {
+    const ReportScene* report = nullptr;
+    Comparison box_test, smits_fixed_dsa, smits_dist_dsa, pluecker_fixed_dsa, median_sah, kd_bvh_median, kd_bvh_sah;
+};
+SceneComparisons comparisons(const SceneResult& s) {
+    SceneComparisons k;
+    k.report = report_scene(s.label, s.triangles);
+    auto cmp = [&](ConfigId num, ConfigId den) { return compare(k.report, s.c[num].render_s, s.c[den].render_s, num, den); };
+    k.box_test = cmp(SmitsCls, PlueckerCls);
+    k.smits_fixed_dsa = cmp(SmitsCls, SmitsDsa);
+    k.smits_dist_dsa = cmp(SmitsDist, SmitsDsa);
+    k.pluecker_fixed_dsa = cmp(PlueckerCls, PlueckerDsa);
+    k.median_sah = cmp(PlueckerDsa, PlueckerDsaSah);
+    k.kd_bvh_median = cmp(Kd, PlueckerDsa);
+    k.kd_bvh_sah = cmp(KdSahC, PlueckerDsaSah);
+    return k;
+}
+
 std::vector<Table> make_tables(const std::vector<SceneResult>& all) {
     std::vector<Table> t(5);
     t[0].title = "Table 1. Box test: smits-mul-cls vs pluecker-cls (median BVH, fixed order); ratio = smits / pluecker time";
-    t[0].head = {"scene", "triangles", "smits-mul-cls ms", "pluecker-cls ms", "ours: render", "ours: trace", "report (per scene)"};
+    t[0].head = {"scene", "triangles", "report scene", "smits-mul-cls ms", "pluecker-cls ms", "ours: render", "report",
+                 "ours/report", "ours: trace"};
     t[1].title = "Table 2. Child order (median BVH); ratio = other order's time / DSA time";
-    t[1].head = {"scene", "smits cls/dist/dsa ms", "pluecker cls/dsa ms", "smits fixed/dsa", "smits dist/dsa",
-                 "pluecker fixed/dsa", "trace: smits fixed/dsa", "report (per scene)"};
+    t[1].head = {"scene", "report scene", "smits cls/dist/dsa ms", "pluecker cls/dsa ms", "smits fixed/dsa", "report",
+                 "ours/report", "smits dist/dsa", "report", "ours/report", "pluecker fixed/dsa", "report", "ours/report",
+                 "trace: smits fixed/dsa", "trace: pluecker fixed/dsa"};
     t[2].title = "Table 3. BVH build: median vs SAH (pluecker-dsa); ratio = median / SAH render time";
-    t[2].head = {"scene", "median build ms", "SAH build ms", "SAH Mtri/s", "median ms", "SAH ms", "ours: render",
-                 "ours: trace", "report (per scene)"};
+    t[2].head = {"scene", "report scene", "median build ms", "SAH build ms", "SAH Mtri/s", "median ms", "SAH ms",
+                 "ours: render", "report", "ours/report", "ours: trace"};
     t[3].title = "Table 4. BVH vs K-D tree (pluecker-dsa BVH; K-D: front-to-back, same triangle test)";
-    t[3].head = {"scene", "render K-D/BVH med", "render K-D/BVH SAH", "build K-D/BVH med", "build K-D/BVH SAH",
-                 "BVH MB med/SAH", "K-D nodes MB med/SAH", "K-D lists MB med/SAH", "lists/nodes med/SAH",
-                 "refs/tri med/SAH", "ours vs report: build med/SAH; lists/nodes"};
+    t[3].head = {"scene", "report scene", "render K-D/BVH med", "report", "ours/report", "render K-D/BVH SAH", "report",
+                 "ours/report", "build K-D/BVH med", "build K-D/BVH SAH", "BVH MB med/SAH", "K-D nodes MB med/SAH",
+                 "K-D lists MB med/SAH", "lists/nodes med/SAH", "refs/tri med/SAH",
+                 "ours vs report: build med; lists/nodes med/SAH"};
     t[4].title = "Every configuration: trace-only Mrays/s (one thread) and work per ray";
     t[4].head = {"scene", "config", "render ms", "trace Mrays/s", "nodes/ray", "boxes/ray", "tris/ray", "same image+hits"};
+    const double kd_lo = kd_build_ratio(*report_kd_build_ends().first), kd_hi = kd_build_ratio(*report_kd_build_ends().second);
     for (const SceneResult& s : all) {
         const auto& c = s.c;
         auto rs = [&](ConfigId i) { return c[i].render_s; };
         auto ts = [&](ConfigId i) { return c[i].trace_s; };
-        t[0].rows.push_back({s.label, std::to_string(s.triangles), ms(rs(SmitsCls)), ms(rs(PlueckerCls)),
-                             ratio(rs(SmitsCls), rs(PlueckerCls)), ratio(ts(SmitsCls), ts(PlueckerCls)), per_scene(rs(SmitsCls), rs(PlueckerCls), 1.11, 1.25)});
-        t[1].rows.push_back({s.label, ms(rs(SmitsCls)) + "/" + ms(rs(SmitsDist)) + "/" + ms(rs(SmitsDsa)),
-                             ms(rs(PlueckerCls)) + "/" + ms(rs(PlueckerDsa)), ratio(rs(SmitsCls), rs(SmitsDsa)),
-                             ratio(rs(SmitsDist), rs(SmitsDsa)), ratio(rs(PlueckerCls), rs(PlueckerDsa)),
-                             ratio(ts(SmitsCls), ts(SmitsDsa)), per_scene(rs(SmitsCls), rs(SmitsDsa), 1.0 / 1.03, 3.4)});
+        const SceneComparisons k = comparisons(s);
+        const ReportScene* r = k.report;
+        const std::string name = report_scene_cell(r, s.triangles, false);
+        auto add = [&](std::vector<std::string>& row, const Comparison& cmp) {
+            row.push_back(std::isfinite(cmp.ours) ? fmt("%.2f", cmp.ours) : "n/a");
+            for (const std::string& x : cells(r, cmp)) row.push_back(x);
+        };
+        std::vector<std::string> r0{s.label, std::to_string(s.triangles), report_scene_cell(r, s.triangles, true),
+                                    ms(rs(SmitsCls)), ms(rs(PlueckerCls))};
+        add(r0, k.box_test);
+        r0.push_back(ratio(ts(SmitsCls), ts(PlueckerCls)));
+        t[0].rows.push_back(r0);
+
+        std::vector<std::string> r1{s.label, name, ms(rs(SmitsCls)) + "/" + ms(rs(SmitsDist)) + "/" + ms(rs(SmitsDsa)),
+                                    ms(rs(PlueckerCls)) + "/" + ms(rs(PlueckerDsa))};
+        add(r1, k.smits_fixed_dsa);
+        add(r1, k.smits_dist_dsa);
+        add(r1, k.pluecker_fixed_dsa);
+        r1.push_back(ratio(ts(SmitsCls), ts(SmitsDsa)));
+        r1.push_back(ratio(ts(PlueckerCls), ts(PlueckerDsa)));
+        t[1].rows.push_back(r1);
+
         const auto& st = s.s;
-        t[2].rows.push_back({s.label, fmt("%.1f", st[BvhMedian].build_s * 1e3), fmt("%.1f", st[BvhSah].build_s * 1e3),
-                             fmt("%.2f", static_cast<double>(s.triangles) / st[BvhSah].build_s * 1e-6),
-                             ms(rs(PlueckerDsa)), ms(rs(PlueckerDsaSah)), ratio(rs(PlueckerDsa), rs(PlueckerDsaSah)),
-                             ratio(ts(PlueckerDsa), ts(PlueckerDsaSah)),
-                             per_scene(rs(PlueckerDsa), rs(PlueckerDsaSah), 0.0, 2.4)});
+        std::vector<std::string> r2{s.label, name, fmt("%.1f", st[BvhMedian].build_s * 1e3),
+                                    fmt("%.1f", st[BvhSah].build_s * 1e3),
+                                    fmt("%.2f", static_cast<double>(s.triangles) / st[BvhSah].build_s * 1e-6),
+                                    ms(rs(PlueckerDsa)), ms(rs(PlueckerDsaSah))};
+        add(r2, k.median_sah);
+        r2.push_back(ratio(ts(PlueckerDsa), ts(PlueckerDsaSah)));
+        t[2].rows.push_back(r2);
+
         auto pair = [](const std::string& a, const std::string& b) { return a + "/" + b; };
-        t[3].rows.push_back(
-            {s.label, ratio(rs(Kd), rs(PlueckerDsa)), ratio(rs(KdSahC), rs(PlueckerDsaSah)),
-             ratio(st[KdMedian].build_s, st[BvhMedian].build_s), ratio(st[KdSah].build_s, st[BvhSah].build_s),
-             pair(mb(st[BvhMedian].node_bytes + st[BvhMedian].list_bytes), mb(st[BvhSah].node_bytes + st[BvhSah].list_bytes)),
-             pair(mb(st[KdMedian].node_bytes), mb(st[KdSah].node_bytes)),
-             pair(mb(st[KdMedian].list_bytes), mb(st[KdSah].list_bytes)),
-             pair(ratio(double(st[KdMedian].list_bytes), double(st[KdMedian].node_bytes)),
-                  ratio(double(st[KdSah].list_bytes), double(st[KdSah].node_bytes))),
-             pair(ratio(double(st[KdMedian].refs), double(s.triangles)), ratio(double(st[KdSah].refs), double(s.triangles))),
-             versus(st[KdMedian].build_s, st[BvhMedian].build_s, 10, 20) + "/" +
-                 versus(st[KdSah].build_s, st[BvhSah].build_s, 10, 20) + "; " +
-                 (st[KdMedian].list_bytes > st[KdMedian].node_bytes ? "more" : "less") + "/" +
-                 (st[KdSah].list_bytes > st[KdSah].node_bytes ? "more" : "less")});
+        std::vector<std::string> r3{s.label, name};
+        add(r3, k.kd_bvh_median);
+        add(r3, k.kd_bvh_sah);
+        for (const std::string& x :
+             {ratio(st[KdMedian].build_s, st[BvhMedian].build_s), ratio(st[KdSah].build_s, st[BvhSah].build_s),
+              pair(mb(st[BvhMedian].node_bytes + st[BvhMedian].list_bytes), mb(st[BvhSah].node_bytes + st[BvhSah].list_bytes)),
+              pair(mb(st[KdMedian].node_bytes), mb(st[KdSah].node_bytes)),
+              pair(mb(st[KdMedian].list_bytes), mb(st[KdSah].list_bytes)),
+              pair(ratio(double(st[KdMedian].list_bytes), double(st[KdMedian].node_bytes)),
+                   ratio(double(st[KdSah].list_bytes), double(st[KdSah].node_bytes))),
+              pair(ratio(double(st[KdMedian].refs), double(s.triangles)), ratio(double(st[KdSah].refs), double(s.triangles))),
+              versus(st[KdMedian].build_s, st[BvhMedian].build_s, kd_lo, kd_hi) + "; " +
+                  (st[KdMedian].list_bytes > st[KdMedian].node_bytes ? "more" : "less") + "/" +
+                  (st[KdSah].list_bytes > st[KdSah].node_bytes ? "more" : "less")})
+            r3.push_back(x);
+        t[3].rows.push_back(r3);
         for (std::size_t i = 0; i < kConfigs.size(); ++i) {
-            const ConfigResult& r = c[i];
+            const ConfigResult& cr = c[i];
             const double n = static_cast<double>(s.rays);
-            t[4].rows.push_back({s.label, kConfigs[i].name, ms(r.render_s), fmt("%.2f", n / r.trace_s * 1e-6),
-                                 fmt("%.1f", double(r.st.node_visits) / n), fmt("%.1f", double(r.st.box_tests) / n),
-                                 fmt("%.1f", double(r.st.tri_tests) / n), r.same_image && r.same_hits ? "yes" : "NO"});
+            t[4].rows.push_back({s.label, kConfigs[i].name, ms(cr.render_s), fmt("%.2f", n / cr.trace_s * 1e-6),
+                                 fmt("%.1f", double(cr.st.node_visits) / n), fmt("%.1f", double(cr.st.box_tests) / n),
+                                 fmt("%.1f", double(cr.st.tri_tests) / n), cr.same_image && cr.same_hits ? "yes" : "NO"});
         }
     }
-    t[0].rows.push_back({"report, its scenes", "", "", "", kReport.box_test, "", ""});
-    t[1].rows.push_back({"report, its scenes", "", "", kReport.order, "", "", "", ""});
-    t[2].rows.push_back({"report, its scenes", "", "", kReport.sah_build, "", "", kReport.sah_render, "", ""});
-    t[3].rows.push_back({"report, its scenes", kReport.kd_render, kReport.kd_render, kReport.kd_build, kReport.kd_build,
-                         "n/a", "n/a", "n/a", kReport.kd_memory, "n/a", ""});
+    const std::string its = "report, its " + std::to_string(kReportScenes.size()) + " scenes";
+    t[0].rows.push_back({its, "", "", "", "", "", report_range(SmitsCls, PlueckerCls), "", ""});
+    t[1].rows.push_back({its, "", "", "", "", report_range(SmitsCls, SmitsDsa), "", "", report_range(SmitsDist, SmitsDsa), "",
+                         "", report_range(PlueckerCls, PlueckerDsa), "", "", ""});
+    std::string sah_builds;
+    for (const ReportBuild& b : kReportBuilds)
+        sah_builds += (sah_builds.empty() ? "" : "; ") + std::string(b.sah_at_least ? "<" : "~") +
+                      fmt("%.3f", double(b.triangles) / b.bvh_sah_s * 1e-6) + " (" + b.name + ")";
+    t[2].rows.push_back({its, "", "", "", sah_builds, "", "", "", report_range(PlueckerDsa, PlueckerDsaSah), "", ""});
+    t[3].rows.push_back({its, "", "", report_range(Kd, PlueckerDsa), "", "", report_range(KdSahC, PlueckerDsaSah), "",
+                         report_kd_build(), "n/a", "n/a", "n/a", "n/a", kReportKdMemory, "n/a", ""});
     for (const SceneResult& s : all)
         if (s.label == "synthetic") {
             const double ours = static_cast<double>(s.triangles) / s.s[BvhSah].build_s * 1e-6;
-            t[2].notes.push_back(fmt("SAH BVH build throughput, synthetic scene vs the report's 12.7M-triangle build: %.0fx", ours / kReport.build_12m_mtri_s) +
-                                 fmt(", vs its 28M-triangle build: %.0fx", ours / kReport.build_28m_mtri_s));
+            std::string note = "SAH BVH build throughput, synthetic scene vs the report's:";
+            for (const ReportBuild& b : kReportBuilds)
+                note += fmt(b.sah_at_least ? " at least %.0fx" : " about %.0fx", ours / (double(b.triangles) / b.bvh_sah_s * 1e-6)) +
+                        " its " + b.name + " build" + (&b == &kReportBuilds.back() ? "" : ",");
+            t[2].notes.push_back(note);
         }
-    t[0].notes.push_back(std::string("report: ") + kReport.box_test_long);
-    t[0].notes.push_back("report per scene: n/a (no per-scene figure known); 'ours within/below/above' places our render ratio against the report's range over its own scenes");
-    t[1].notes.push_back(std::string("report: ") + kReport.order_long);
-    t[1].notes.push_back("Powerplant, Branch and Lucy are not available here; per scene: n/a. The range is shown under fixed/dsa; DSA is compared there with the other orders");
-    t[2].notes.push_back(std::string("report: ") + kReport.sah_render_long);
-    t[2].notes.push_back(std::string("report: ") + kReport.sah_build_long);
-    t[3].notes.push_back(std::string("report: ") + kReport.kd_build_long);
-    t[3].notes.push_back(std::string("report: ") + kReport.kd_memory_long);
+    std::string map;
+    for (const SceneMap& m : kSceneMap) map += (map.empty() ? "" : ", ") + std::string(m.label) + " -> " + m.report;
+    const std::string per_scene =
+        "report, ours/report: the report's render-time ratio on the same scene (" + map +
+        "; only when the triangle count is within 1%) and ours divided by it; '-': the scene has no report scene. "
+        "The report times whole renders on its own machine: compare ours: render, not trace";
+    for (std::size_t i = 0; i < 4; ++i) t[i].notes.push_back(per_scene);
+    t[0].notes.push_back("report scene: the report's triangle count, and ours minus it");
+    t[0].notes.push_back("report, its scenes: the lowest and highest of the report's ratios over all its scenes");
+    t[2].notes.push_back(std::string("report: ") + kReportSahBuildLong);
+    t[3].notes.push_back(std::string("report: ") + kReportKdBuildLong);
+    t[3].notes.push_back(std::string("report: ") + kReportKdMemoryLong);
+    t[3].notes.push_back("report render ratios: K-D / pluecker-dsa (median BVH) and K-D-sah / pluecker-dsa-sah, from its Tables 3 and 4");
     t[3].notes.push_back("BVH memory: 32-byte nodes + 4-byte triangle index per triangle; K-D: 8-byte nodes + 4-byte leaf-list entries; triangles themselves (same for both) not counted");
-    t[3].notes.push_back("K-D render time against the report: n/a (no figure known)");
-    t[3].notes.push_back("last column: our K-D/BVH build ratios against the report's 10-20, and whether our K-D leaf lists take more or less memory than the K-D nodes");
+    t[3].notes.push_back("last column: our median K-D/BVH build ratio against the report's range (Powerplant, Lucy; it gives no SAH K-D build time), and whether our K-D leaf lists take more or less memory than the K-D nodes");
     return t;
+}
+
+json report_json() {
+    json j;
+    j["sources"] = {kSourceR};
+    j["render_s_columns"] = json::array();
+    for (const Config& c : kConfigs) j["render_s_columns"].push_back(c.name);
+    for (const ReportScene& r : kReportScenes) {
+        json js = {{"scene", r.name}, {"triangles", r.triangles}};
+        for (std::size_t i = 0; i < kConfigs.size(); ++i)
+            js["render_s"][kConfigs[i].name] = r.render_s[i] > 0 ? json(r.render_s[i]) : json(nullptr);
+        j["scenes"].push_back(js);
+    }
+    for (const ReportBuild& b : kReportBuilds)
+        j["builds"].push_back({{"scene", b.name},
+                               {"triangles", b.triangles},
+                               {"bvh_median_s", b.bvh_median_s},
+                               {"bvh_sah_s", b.bvh_sah_s},
+                               {"bvh_sah_s_is_lower_bound", b.sah_at_least},
+                               {"bvh_sah_as_given", b.sah_as_given},
+                               {"kd_median_s", b.kd_median_s}});
+    for (const SceneMap& m : kSceneMap) j["scene_map"][m.label] = m.report;
+    j["sah_build"] = kReportSahBuildLong;
+    j["kd_build"] = kReportKdBuildLong;
+    j["kd_memory"] = kReportKdMemoryLong;
+    j["ranges"] = {{"box_test", report_range(SmitsCls, PlueckerCls)},
+                   {"smits_fixed_over_dsa", report_range(SmitsCls, SmitsDsa)},
+                   {"smits_dist_over_dsa", report_range(SmitsDist, SmitsDsa)},
+                   {"pluecker_fixed_over_dsa", report_range(PlueckerCls, PlueckerDsa)},
+                   {"median_over_sah", report_range(PlueckerDsa, PlueckerDsaSah)},
+                   {"kd_over_bvh_median", report_range(Kd, PlueckerDsa)},
+                   {"kd_over_bvh_sah", report_range(KdSahC, PlueckerDsaSah)},
+                   {"kd_over_bvh_build_median", report_kd_build()}};
+    return j;
 }
 
 json to_json(const Options& o, const std::vector<SceneResult>& all) {
     json j;
     j["settings"] = {{"size", o.size}, {"repeat", o.repeat}, {"threads", 1}, {"synthetic", o.synthetic},
                      {"timing", "CPU seconds of the working thread, best of repeat"}};
-    j["report"] = {{"sources", {kSourceR}},
-                   {"box_test_ratio", kReport.box_test_long},
-                   {"order_ratio", kReport.order_long},
-                   {"sah_render_ratio", kReport.sah_render_long},
-                   {"sah_build", kReport.sah_build_long},
-                   {"kd_build_ratio", kReport.kd_build_long},
-                   {"kd_lists_vs_nodes", kReport.kd_memory_long},
-                   {"kd_render_ratio", "n/a"}};
+    j["report"] = report_json();
     for (const SceneResult& s : all) {
         json js;
         js["scene"] = s.label;
         js["triangles"] = s.triangles;
         js["rays_per_render"] = s.rays;
+        const SceneComparisons k = comparisons(s);
+        if (k.report)
+            js["report_scene"] = {{"name", k.report->name},
+                                  {"triangles", k.report->triangles},
+                                  {"ours_minus_report_triangles",
+                                   static_cast<long>(s.triangles) - static_cast<long>(k.report->triangles)}};
+        else
+            js["report_scene"] = nullptr;
+        js["versus_report"] = {{"note", "render-time ratios: ours, the report's on the same scene (null: "
+                                        "no report scene), ours / report"},
+                               {"box_test_smits_over_pluecker", to_json(k.box_test)},
+                               {"smits_fixed_over_dsa", to_json(k.smits_fixed_dsa)},
+                               {"smits_dist_over_dsa", to_json(k.smits_dist_dsa)},
+                               {"pluecker_fixed_over_dsa", to_json(k.pluecker_fixed_dsa)},
+                               {"median_over_sah", to_json(k.median_sah)},
+                               {"kd_over_bvh_median", to_json(k.kd_bvh_median)},
+                               {"kd_sah_over_bvh_sah", to_json(k.kd_bvh_sah)}};
         for (std::size_t i = 0; i < kConfigs.size(); ++i) {
             const ConfigResult& r = s.c[i];
             js["configs"][kConfigs[i].name] = {
@@ -507,12 +727,12 @@ json to_json(const Options& o, const std::vector<SceneResult>& all) {
                 {"same_image", r.same_image},
                 {"same_hits", r.same_hits}};
         }
-        for (int k = 0; k < kStructures; ++k) {
-            const StructureResult& r = s.s[static_cast<std::size_t>(k)];
-            js["structures"][kStructureNames[k]] = {{"build_s", r.build_s},   {"nodes", r.nodes},
-                                                    {"leaves", r.leaves},     {"references", r.refs},
-                                                    {"node_bytes", r.node_bytes}, {"list_bytes", r.list_bytes},
-                                                    {"depth", r.depth}};
+        for (int k2 = 0; k2 < kStructures; ++k2) {
+            const StructureResult& r = s.s[static_cast<std::size_t>(k2)];
+            js["structures"][kStructureNames[k2]] = {{"build_s", r.build_s},   {"nodes", r.nodes},
+                                                     {"leaves", r.leaves},     {"references", r.refs},
+                                                     {"node_bytes", r.node_bytes}, {"list_bytes", r.list_bytes},
+                                                     {"depth", r.depth}};
         }
         j["scenes"].push_back(js);
     }
