@@ -54,7 +54,8 @@
 namespace pluecker {
 
 // ---------------------------------------------------------------------------
-// Names and options
+// The choices of a traversal, and their names in output (the applications
+// parse them: pluecker/app/names.hpp)
 
 enum class BoxTestKind { Exact, Smits, Pluecker, Fixed };
 enum class ChildOrder { Fixed, Dsa, Dist };
@@ -110,7 +111,7 @@ Entry* traversal_stack(Entry* local, int depth) {
     return deep.data();
 }
 
-struct Accel;
+struct Accel;  // accel.hpp
 
 // Brute force over all triangles with the same triangle test (mesh order).
 Hit brute_force_closest(const Mesh& m, const Ray& r);
