@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Pipelined fixed-point Plücker ray/box intersector.
 //
-// Computes, bit for bit, the datapath of model/include/pluecker/fixed.hpp
+// Computes, bit for bit, the datapath of model/core/include/pluecker/fixed.hpp
 // (Mahovsky & Wyvill, JGT 9(1) 2004: the ray class selects the box planes,
 // then an origin test, a segment-end test and six 2x2 determinant sign tests
 // on the silhouette edges). One datapath serves all eight ray classes: the

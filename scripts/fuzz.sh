@@ -113,17 +113,17 @@ for t in "${targets[@]}"; do
   crashes=$(find "$art" -type f -newer "$stamp" | wc -l)  # this run's findings only
   line="$t: rc=$rc runs=${runs:-?} exec/s=${eps:-?} ${cov:-cov: ?} corpus=$(find "$work" -type f | wc -l) artifacts=$crashes"
   summary+=("$line")
-  # Edge coverage of the model's sources reached by the corpus (libFuzzer's
+  # Edge coverage of the model's sources (core/src, rt/src) reached by the corpus (libFuzzer's
   # pc table: edges include sanitizer and exception paths, so 100% is not
   # reachable). One line per file with any edge.
   if [ "${FUZZ_COVERAGE:-1}" = 1 ] && [ "$rc" -eq 0 ]; then
     "$bin" "$work" -runs=0 -print_coverage=1 -timeout=60 2>&1 >/dev/null |
       awk '/^(UN)?COVERED_FUNC:/ { split($5, e, "/"); f = $NF; sub(/:[0-9]+$/, "", f);
-             if (f !~ /\/model\/src\//) next; sub(/.*\/model\/src\//, "", f);
+             if (f !~ /\/model\/(core|rt)\/src\//) next; sub(/.*\/model\//, "", f);
              cov[f] += e[1]; tot[f] += e[2] }
            END { for (f in cov) if (cov[f] > 0) printf "%s %d/%d edges (%.0f%%)\n", f, cov[f], tot[f], 100 * cov[f] / tot[f] }' |
       sort > "$BUILD/$t.coverage"
-    summary+=("  coverage of model/src: $(paste -sd ';' "$BUILD/$t.coverage" | sed 's/;/; /g')")
+    summary+=("  coverage of the model's sources: $(paste -sd ';' "$BUILD/$t.coverage" | sed 's/;/; /g')")
   fi
   if [ "$rc" -ne 0 ] || [ "$crashes" -gt 0 ]; then
     status=1

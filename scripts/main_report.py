@@ -127,7 +127,7 @@ def main(argv) -> int:
     body.append("<p>Extra work = 100 &middot; (box tests at W &minus; box tests with exact answers) / box tests "
                 "with exact answers, over all rays of the render; false-hit rate = false hits / exact misses "
                 "on the exact traversal's box queries; nearest mode drops the conservative margin. Definitions: "
-                "<code>model/include/pluecker/study.hpp</code>; the full sweep is <code>make report</code>.</p>")
+                "<code>model/rt/include/pluecker/study.hpp</code>; the full sweep is <code>make report</code>.</p>")
     rows = []
     for w in sweep["widths"]:
         rows.append([rl.pair_name(w["coord_bits"], w["dir_bits"]), w["query"]["conservative"]["false_misses"],

@@ -9,7 +9,7 @@ the Verilator harness, model vs float Pluecker, float vs exact).
 
 Output: out/report/report.html (self-contained: tables and base64 PNG
 plots), out/report/report.json (every figure), out/report/plots/*.png.
-Definitions of the figures: model/include/pluecker/study.hpp.
+Definitions of the figures: model/rt/include/pluecker/study.hpp.
 """
 from __future__ import annotations
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Builds the Verilator harness `pluecker_sim` for one RTL configuration:
-# rtl/pluecker_intersector.sv verilated with -G parameters, the harness in
-# sim/, and the golden model library (build/model/libpluecker_model.a).
+# configures sim/CMakeLists.txt (rtl/pluecker_intersector.sv verilated with
+# -G parameters, the harness in sim/, the model's libraries from the CMake
+# package of its build directory) in SIM_OUT and builds it.
 #
 # Settings (environment): COORD_BITS, DIR_BITS (6..24, default 16),
 # MODE (conservative|nearest, default conservative), SIM_TAG_BITS (default 8),
@@ -10,8 +11,10 @@
 # rtl/pluecker_intersector.sv), SIM_OUT (default build/sim/<C>x<D>[_nearest]),
 # SIM_JOBS (default 2), SIM_ASSERT=1 (compile the RTL's ASSERT_ON properties
 # into the model; slower), SIM_DIRECT_EVAL=0 (plain eval(), see
-# sim/rtl_intersector.cpp). Run through scripts/venv-exec.sh so that Verilator
-# is the venv's. Prints the binary's path last. Exit 2 on bad settings.
+# sim/rtl_intersector.cpp), SIM_VFLAGS (extra Verilator flags). Verilator is
+# always the venv's: run from elsewhere, the script runs itself again
+# through scripts/venv-exec.sh. Prints the binary's path last. Exit 2 on
+# bad settings.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 cd "$root"
@@ -36,66 +39,54 @@ D=$((10#$D))
 [[ "$T" =~ ^[0-9]+$ ]] && ((10#$T >= 1 && 10#$T <= 16)) || die "SIM_TAG_BITS=$T is not an integer in 1..16"
 T=$((10#$T))
 case "$MODE" in
-  conservative) cons=1; suffix="" ;;
-  nearest) cons=0; suffix="_nearest" ;;
+  conservative) suffix="" ;;
+  nearest) suffix="_nearest" ;;
   *) die "MODE=$MODE is not one of conservative, nearest" ;;
 esac
+[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || die "SIM_JOBS=$jobs is not a positive integer"
 
 model_build="${MODEL_BUILD:-build/model}"
 rtl="${SIM_RTL:-rtl/pluecker_intersector.sv}"
 out="${SIM_OUT:-build/sim/${C}x${D}${suffix}}"
-lib="$model_build/libpluecker_model.a"
 [[ -f "$rtl" ]] || die "RTL source $rtl not found"
-[[ -f "$lib" ]] || die "model library $lib not found (run 'make build' first)"
-# Absolute paths, so that the same configuration always gives Verilator the
-# same command line (a different one makes it rebuild everything).
+[[ -f "$model_build/pluecker-config.cmake" ]] ||
+  die "model build $model_build has no CMake package pluecker-config.cmake (run 'make build' first)"
+
+# The venv's Verilator, as scripts/venv-exec.sh sets it.
+[[ -x "$root/.venv/bin/python" ]] || die "no venv at $root/.venv (run 'make setup' first)"
+venv_root="$("$root/.venv/bin/python" -c 'import os, verilator; print(os.path.dirname(verilator.__file__))')" ||
+  die "the venv has no verilator package (run 'make setup')"
+if [[ "${VERILATOR_ROOT:-}" != "$venv_root" ]]; then
+  exec "$root/scripts/venv-exec.sh" "$0" "$@"
+fi
+
+# Absolute paths: CMake keeps them in the build directory's cache.
 model_build="$(cd "$model_build" && pwd)"
-lib="$model_build/libpluecker_model.a"
 rtl="$(cd "$(dirname "$rtl")" && pwd)/$(basename "$rtl")"
 mkdir -p "$out"
 out="$(cd "$out" && pwd)"
-command -v verilator > /dev/null || die "verilator not on PATH (run through scripts/venv-exec.sh)"
+asserts=OFF
+[[ "${SIM_ASSERT:-0}" = 1 ]] && asserts=ON
+direct=ON
+[[ "${SIM_DIRECT_EVAL:-1}" = 0 ]] && direct=OFF
+# shellcheck disable=SC2206
+vflags=(${SIM_VFLAGS:-})
+IFS=';'
+vlist="${vflags[*]}"
+unset IFS
 
-# Include directories and libraries as the model's CMake configuration found them.
-cache="$model_build/CMakeCache.txt"
-cache_get() { sed -n "s/^$1:[A-Z]*=//p" "$cache" 2> /dev/null | head -n1; }
-glm_inc="$(cache_get GLM_INCLUDE_DIR)"
-gmpxx_lib="$(cache_get GMPXX_LIBRARY)"
-gmp_lib="$(cache_get GMP_LIBRARY)"
-incs=(-I"$root/model/include" -I"$root/model/cli")
-[[ -n "$glm_inc" && "$glm_inc" != /usr/include ]] && incs+=(-I"$glm_inc")
-libs=("$lib" -lassimp "${gmpxx_lib:--lgmpxx}" "${gmp_lib:--lgmp}" -pthread)
-
-# Waivers that come with the RTL (rtl/*.vlt), and the RTL directory for
-# submodules (one module per file).
-rtl_dir="$(dirname "$rtl")"
-shopt -s nullglob
-vlt=("$rtl_dir"/*.vlt)
-shopt -u nullglob
-
-bin="$out/pluecker_sim"
-# Verilator's make does not track the model library: relink when it changed.
-if [[ -f "$bin" && "$lib" -nt "$bin" ]]; then rm -f "$bin"; fi
-
-asserts=""
-[[ "${SIM_ASSERT:-0}" = 1 ]] && asserts="-DASSERT_ON --assert"
-defs="-DSIM_COORD_BITS=$C -DSIM_DIR_BITS=$D -DSIM_TAG_BITS=$T -DSIM_CONSERVATIVE=$cons -DSIM_DIRECT_EVAL=${SIM_DIRECT_EVAL:-1}"
-# -ffp-contract=off: as the model library (model/CMakeLists.txt).
-# shellcheck disable=SC2086
-verilator --cc --exe --build -O3 --x-assign fast --x-initial fast -Wall \
-  --top-module pluecker_intersector --prefix Vpluecker_intersector \
-  -GCOORD_BITS="$C" -GDIR_BITS="$D" -GTAG_BITS="$T" -GCONSERVATIVE="$cons" \
-  -y "$rtl_dir" $asserts ${SIM_VFLAGS:-} \
-  --Mdir "$out" -o pluecker_sim -j "$jobs" \
-  -CFLAGS "-std=c++20 -ffp-contract=off ${incs[*]} $defs" \
-  -LDFLAGS "${libs[*]}" \
-  -MAKEFLAGS "OPT_FAST=-O3 OPT_SLOW=-O1 OPT_GLOBAL=-O1" \
-  "${vlt[@]}" "$rtl" \
-  "$root"/sim/{main,cmd_query,cmd_render,cmd_bench,cmd_gen,rtl_intersector,rtl_engine}.cpp \
-  "$root"/model/cli/args.cpp > "$out/build.log" 2>&1 ||
+cmake -S "$root/sim" -B "$out" -DCMAKE_BUILD_TYPE=Release -DPLUECKER_MODEL_BUILD="$model_build" \
+  -DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_MODE="$MODE" -DSIM_TAG_BITS="$T" -DSIM_RTL="$rtl" \
+  -DSIM_ASSERT="$asserts" -DSIM_DIRECT_EVAL="$direct" -DSIM_VFLAGS="$vlist" > "$out/configure.log" 2>&1 ||
+  {
+    cat "$out/configure.log" >&2
+    echo "sim/build.sh: CMake configuration failed (log: $out/configure.log)" >&2
+    exit 1
+  }
+cmake --build "$out" -j "$jobs" > "$out/build.log" 2>&1 ||
   {
     cat "$out/build.log" >&2
     echo "sim/build.sh: Verilator build failed (log: $out/build.log)" >&2
     exit 1
   }
-echo "$bin"
+echo "$out/pluecker_sim"

@@ -71,7 +71,7 @@ void run_pass(Pass& pass, std::size_t n, const std::vector<PackedQuery>& packed,
 }  // namespace
 
 int cmd_bench(const std::vector<std::string>& argv) {
-    const cli::Args args(argv, {"n", "seed", "ready", "json", "mode", "coord-bits", "dir-bits"}, {"help"});
+    const app::Args args(argv, {"n", "seed", "ready", "json", "mode", "coord-bits", "dir-bits"}, {"help"});
     if (args.has("help")) {
         std::fputs(kUsage, stdout);
         return 0;

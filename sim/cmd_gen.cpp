@@ -30,7 +30,7 @@ constexpr const char* kUsage =
 }  // namespace
 
 int cmd_gen(const std::vector<std::string>& argv) {
-    const cli::Args args(argv, {"n", "seed", "kind", "out"}, {"help"});
+    const app::Args args(argv, {"n", "seed", "kind", "out"}, {"help"});
     if (args.has("help")) {
         std::fputs(kUsage, stdout);
         return 0;

@@ -3,13 +3,11 @@
 #include "commands.hpp"
 #include "rtl_intersector.hpp"
 
+#include "pluecker/app/query_file.hpp"
+
 #include "pluecker/query.hpp"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
-#include <iostream>
 #include <optional>
 #include <stdexcept>
 
@@ -30,17 +28,10 @@ constexpr const char* kUsage =
 // Mismatches printed in full before the harness only counts them.
 constexpr std::size_t kMaxReported = 20;
 
-std::vector<Query> read_input(const std::string& path, std::vector<std::size_t>& lines) {
-    if (path == "-") return read_queries(std::cin, "<stdin>", &lines);
-    std::ifstream in(path);
-    if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
-    return read_queries(in, path, &lines);
-}
-
 }  // namespace
 
 int cmd_query(const std::vector<std::string>& argv) {
-    const cli::Args args(argv, {"mode", "coord-bits", "dir-bits"}, {"check", "help"});
+    const app::Args args(argv, {"mode", "coord-bits", "dir-bits"}, {"check", "help"});
     if (args.has("help")) {
         std::fputs(kUsage, stdout);
         return 0;
@@ -50,11 +41,11 @@ int cmd_query(const std::vector<std::string>& argv) {
         throw InputError("expected one query FILE ('-' for standard input), got " +
                          std::to_string(args.positional().size()));
     const std::string path = args.positional()[0];
-    const std::string source = path == "-" ? "<stdin>" : path;
+    const std::string source = app::query_source_name(path);
     const FixedFormat fmt = built_format();
 
     std::vector<std::size_t> lines;
-    const std::vector<Query> queries = read_input(path, lines);
+    const std::vector<Query> queries = app::read_query_file(path, lines);
     // The model's set-up (fixed.hpp's range contract): any finite origin;
     // a ray that never meets the range cube is a miss without an RTL query.
     std::vector<std::optional<FixedRay>> rays(queries.size());

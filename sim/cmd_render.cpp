@@ -2,11 +2,12 @@
 // `pluecker_sim render`: the model's batched render path with every box
 // query answered by the RTL (hardware in the loop), each answer checked
 // against the golden model. Scene, camera and image options are those of
-// `pluecker render` (model/cli/render_setup.hpp), so the image equals
+// `pluecker render` (pluecker/app/render_options.hpp), so the image equals
 // `pluecker render --test fixed` with the same options and widths.
 #include "commands.hpp"
-#include "render_setup.hpp"
 #include "rtl_engine.hpp"
+
+#include "pluecker/app/render_options.hpp"
 
 #include "pluecker/render.hpp"
 
@@ -34,10 +35,10 @@ constexpr const char* kUsage =
 }  // namespace
 
 int cmd_render(const std::vector<std::string>& argv) {
-    std::set<std::string> options = cli::kSceneOptions;
+    std::set<std::string> options = app::kSceneOptions;
     options.insert("stats");
     const std::set<std::string> switches = {"help", "quiet"};
-    const cli::Args given(argv, options, switches);
+    const app::Args given(argv, options, switches);
     if (given.has("help")) {
         std::fputs(kUsage, stdout);
         return 0;
@@ -56,8 +57,8 @@ int cmd_render(const std::vector<std::string>& argv) {
     if (!given.has("coord-bits")) av.insert(av.end(), {"--coord-bits", std::to_string(built.coord_bits)});
     if (!given.has("dir-bits")) av.insert(av.end(), {"--dir-bits", std::to_string(built.dir_bits)});
     if (!given.has("mode")) av.insert(av.end(), {"--mode", mode_name(built.mode)});
-    const cli::Args a(av, options, switches);
-    const auto s = cli::make_setup(a);
+    const app::Args a(av, options, switches);
+    const auto s = app::make_setup(a);
     if (s->opts.order != ChildOrder::Fixed && s->opts.order != ChildOrder::Dsa)
         throw InputError("option --order: the batched traversal takes fixed or dsa");
     s->opts.progress = !a.has("quiet");

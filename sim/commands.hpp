@@ -4,7 +4,7 @@
 // throws InputError for bad input.
 #pragma once
 
-#include "args.hpp"  // model/cli: the CLI's option parser
+#include "pluecker/app/args.hpp"
 
 #include "pluecker/fixed.hpp"
 
@@ -22,7 +22,7 @@ int cmd_gen(const std::vector<std::string>& argv);
 // must agree with the configuration the RTL was built for (one binary per
 // configuration); a mismatch is an InputError naming the make command that
 // builds the right one.
-void check_build_options(const cli::Args& args);
+void check_build_options(const app::Args& args);
 
 // "16x16 conservative" for messages.
 std::string build_name();

@@ -4,6 +4,8 @@
 #include "commands.hpp"
 #include "rtl_intersector.hpp"
 
+#include "pluecker/app/names.hpp"
+
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -16,7 +18,7 @@ std::string build_name() {
     return std::to_string(f.coord_bits) + "x" + std::to_string(f.dir_bits) + " " + mode_name(f.mode);
 }
 
-void check_build_options(const cli::Args& args) {
+void check_build_options(const app::Args& args) {
     const FixedFormat built = built_format();
     FixedFormat want = built;
     want.coord_bits = static_cast<int>(args.get_int("coord-bits", built.coord_bits, -1'000'000, 1'000'000));

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-// A BoxEngine (traverse.hpp) that answers every batch of box queries with
+// A BoxEngine (batched.hpp) that answers every batch of box queries with
 // the Verilated RTL and checks each answer against the golden model.
 #pragma once
 
 #include "rtl_intersector.hpp"
 
-#include "pluecker/traverse.hpp"
+#include "pluecker/batched.hpp"
 
 #include <cstdint>
 #include <span>

@@ -6,6 +6,7 @@
 //
 // Vectors are passed as any sequence of three numbers and returned as
 // tuples. Bad arguments raise pluecker_py.InputError, a ValueError.
+#include "pluecker/app/names.hpp"  // parse_fixed_mode
 #include "pluecker/boxtest.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/geometry.hpp"

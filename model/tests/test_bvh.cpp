@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // BVH construction: structure, boxes, epsilon, child order and degenerate
 // inputs, for both build methods, on seeded random meshes and built-in scenes.
+#include "pluecker/app/names.hpp"  // parse_* (the applications' name parsing)
 #include "pluecker/bvh.hpp"
 #include "pluecker/mesh.hpp"
 

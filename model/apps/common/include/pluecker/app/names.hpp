@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// Command-line names of the libraries' enums and lists, parsed here, by
+// the applications alone; the libraries take the enums (and print the
+// names back with test_name, order_name, method_name, mode_name).
+// Each throws InputError naming the bad value.
+#pragma once
+
+#include "pluecker/bvh.hpp"
+#include "pluecker/fixed.hpp"
+#include "pluecker/study.hpp"
+#include "pluecker/traversal.hpp"
+
+#include <string>
+#include <vector>
+
+namespace pluecker {
+
+BoxTestKind parse_box_test(const std::string& s);      // exact | smits | pluecker | fixed
+ChildOrder parse_child_order(const std::string& s);    // fixed | dsa | dist
+BuildMethod parse_build_method(const std::string& s);  // median | sah
+FixedMode parse_fixed_mode(const std::string& s);      // conservative | nearest
+
+// Width list of --widths (`flag` names it in errors):
+//   "A:B:S"          A, A+S, ..., <= B, COORD_BITS = DIR_BITS (S >= 1;
+//                    "A:B" is step 1)
+//   "W1,W2,..."      equal pairs
+//   "12x10,16x16"    separate pairs COORD_BITSxDIR_BITS (mixable with W)
+// Every width in 6..24; at least one; InputError naming the flag otherwise.
+std::vector<WidthPair> parse_widths(const std::string& spec, const std::string& flag = "--widths");
+
+}  // namespace pluecker

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+#include "pluecker/app/names.hpp"
+
+#include <string>
+#include <vector>
+
+namespace pluecker {
+
+BoxTestKind parse_box_test(const std::string& s) {
+    if (s == "exact") return BoxTestKind::Exact;
+    if (s == "smits") return BoxTestKind::Smits;
+    if (s == "pluecker") return BoxTestKind::Pluecker;
+    if (s == "fixed") return BoxTestKind::Fixed;
+    throw InputError("--test: '" + s + "' is not one of exact, smits, pluecker, fixed");
+}
+
+ChildOrder parse_child_order(const std::string& s) {
+    if (s == "fixed") return ChildOrder::Fixed;
+    if (s == "dsa") return ChildOrder::Dsa;
+    if (s == "dist") return ChildOrder::Dist;
+    throw InputError("--order: '" + s + "' is not one of fixed, dsa, dist");
+}
+
+BuildMethod parse_build_method(const std::string& s) {
+    if (s == "median") return BuildMethod::Median;
+    if (s == "sah") return BuildMethod::Sah;
+    throw InputError("build method: '" + s + "' (expected median or sah)");
+}
+
+FixedMode parse_fixed_mode(const std::string& s) {
+    if (s == "conservative") return FixedMode::Conservative;
+    if (s == "nearest") return FixedMode::Nearest;
+    throw InputError("mode '" + s + "' is not one of conservative, nearest");
+}
+
+// ---------------------------------------------------------------------------
+// Widths
+
+namespace {
+
+int parse_bits(const std::string& s, const std::string& flag, const std::string& spec) {
+    if (s.empty() || s.size() > 3 || s.find_first_not_of("0123456789") != std::string::npos)
+        throw InputError(flag + ": '" + s + "' in '" + spec + "' is not a width");
+    const int v = std::stoi(s);
+    if (v < FixedFormat::kMinBits || v > FixedFormat::kMaxBits)
+        throw InputError(flag + ": width " + s + " in '" + spec + "' is outside " +
+                         std::to_string(FixedFormat::kMinBits) + ".." + std::to_string(FixedFormat::kMaxBits));
+    return v;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+    std::vector<std::string> out;
+    std::size_t pos = 0;
+    for (;;) {
+        const std::size_t k = s.find(sep, pos);
+        out.push_back(s.substr(pos, k == std::string::npos ? std::string::npos : k - pos));
+        if (k == std::string::npos) return out;
+        pos = k + 1;
+    }
+}
+
+}  // namespace
+
+std::vector<WidthPair> parse_widths(const std::string& spec, const std::string& flag) {
+    std::vector<WidthPair> out;
+    if (spec.find(':') != std::string::npos) {
+        const auto parts = split(spec, ':');
+        if (parts.size() < 2 || parts.size() > 3)
+            throw InputError(flag + ": '" + spec + "' is not FIRST:LAST[:STEP]");
+        const int a = parse_bits(parts[0], flag, spec);
+        const int b = parse_bits(parts[1], flag, spec);
+        int step = 1;
+        if (parts.size() == 3) {
+            const std::string& s = parts[2];
+            if (s.empty() || s.size() > 2 || s.find_first_not_of("0123456789") != std::string::npos ||
+                std::stoi(s) < 1)
+                throw InputError(flag + ": step '" + s + "' in '" + spec + "' is not a positive integer");
+            step = std::stoi(s);
+        }
+        if (b < a) throw InputError(flag + ": '" + spec + "' has LAST < FIRST");
+        for (int w = a; w <= b; w += step) out.push_back({w, w});
+        return out;
+    }
+    for (const std::string& item : split(spec, ',')) {
+        const std::size_t x = item.find('x');
+        if (x == std::string::npos) {
+            const int w = parse_bits(item, flag, spec);
+            out.push_back({w, w});
+        } else {
+            out.push_back({parse_bits(item.substr(0, x), flag, spec), parse_bits(item.substr(x + 1), flag, spec)});
+        }
+    }
+    return out;
+}
+
+}  // namespace pluecker

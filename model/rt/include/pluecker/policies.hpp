@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+// The box tests as traversal policies (smits, pluecker, exact, fixed, and a
+// recording wrapper), the interface traverse_loops.hpp is written against.
+#pragma once
+
+#include "pluecker/accel.hpp"
+#include "pluecker/box_kernels.hpp"
+#include "pluecker/boxtest.hpp"
+#include "pluecker/fixed.hpp"
+#include "pluecker/query.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace pluecker {
+
+// ---------------------------------------------------------------------------
+// Box tests as traversal policies. Each has a per-ray State, set up once and
+// updated when tmax shrinks, and answers hit(state, node index, box).
+
+// A policy's hit<C>(state, node, box, tnear) may use the class C of the ray
+// (the traversal passes the class of the ray it set up).
+// A policy with kPairs also answers hit2<C>(state, pair, tnear): the bits
+// of the children of a NodePair it hits (traverse_pairs); with kDistance
+// their entry distances in lanes 0, 1 of tnear.
+struct SmitsPolicy {
+    static constexpr bool kDistance = true;
+    static constexpr bool kPairs = true;
+    struct State {
+        FastSmitsRay s;
+        Ray ray;
+        SmitsPairRay pr;
+    };
+    State setup(const Ray& r) const {
+        const FastSmitsRay s = fast_smits_setup(r);
+        return {s, r, smits_pair_setup(s)};
+    }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const {
+        st.s.tmax = t;
+        st.ray.tmax = t;
+        st.pr.init = Float4{0.0f, 0.0f, -t, -t};
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] bool hit(const State& st, std::uint32_t, const Box& b, float* tnear) const {
+        return fast_smits_hit<C>(st.s, b, tnear);
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] unsigned hit2(const State& st, const NodePair& p, Float4& tnear) const {
+        return fast_smits_pair<C>(st.pr, p, tnear);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+struct PlueckerPolicy {
+    static constexpr bool kDistance = false;
+    static constexpr bool kPairs = true;
+    struct State {
+        FastPlueckerRay p;
+        Ray ray;
+        PlueckerPairRay pr;
+    };
+    State setup(const Ray& r) const {
+        const FastPlueckerRay p = fast_pluecker_setup(r);
+        return {p, r, pluecker_pair_setup(p)};
+    }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const {
+        st.ray.tmax = t;
+        st.p = fast_pluecker_setup(st.ray);
+        st.pr = pluecker_pair_setup(st.p);
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] bool hit(const State& st, std::uint32_t, const Box& b, float*) const {
+        return fast_pluecker_hit<C>(st.p, b);
+    }
+    template <RayClass C>
+    [[gnu::always_inline]] unsigned hit2(const State& st, const NodePair& p, Float4&) const {
+        return fast_pluecker_pair<C>(st.pr, p);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+struct ExactPolicy {
+    static constexpr bool kDistance = false;
+    struct State {
+        Ray ray;
+    };
+    State setup(const Ray& r) const { return {r}; }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const { st.ray.tmax = t; }
+    template <RayClass>
+    bool hit(const State& st, std::uint32_t, const Box& b, float*) const {
+        return exact_hit(st.ray, b);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+struct FixedPolicy {
+    static constexpr bool kDistance = false;
+    explicit FixedPolicy(const Accel& a) : accel(&a) {}
+    const Accel* accel;
+    struct State {
+        Ray ray;  // the ray as given, tmax shrunk to the best hit
+        FixedRay fr;
+        bool live = false;
+    };
+    State setup(const Ray& r) const;
+    bool live(const State& st) const { return st.live; }
+    void shrink(State& st, float t) const;
+    template <RayClass>
+    bool hit(const State& st, std::uint32_t node, const Box&, float*) const {
+        return fixed_hit(st.fr, accel->qboxes[node], accel->format);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+};
+
+// Wraps a policy and appends every query it answers to *out.
+template <class Inner>
+struct RecordingPolicy {
+    static constexpr bool kDistance = Inner::kDistance;
+    const Inner* inner;
+    std::vector<Query>* out;
+    using State = typename Inner::State;
+    State setup(const Ray& r) const { return inner->setup(r); }
+    bool live(const State& st) const { return inner->live(st); }
+    void shrink(State& st, float t) const { inner->shrink(st, t); }
+    template <RayClass C>
+    bool hit(const State& st, std::uint32_t node, const Box& b, float* tnear) const {
+        out->push_back(Query{inner->query_ray(st), b});
+        return inner->template hit<C>(st, node, b, tnear);
+    }
+    Ray query_ray(const State& st) const { return inner->query_ray(st); }
+};
+
+}  // namespace pluecker

@@ -1,0 +1,204 @@
+// SPDX-License-Identifier: MIT
+#include "pluecker/batched.hpp"
+
+#include <stdexcept>
+#include <vector>
+
+namespace pluecker {
+
+// ---------------------------------------------------------------------------
+// Batched traversal
+
+void SoftwareBoxEngine::test(std::span<const BoxQuery> batch, std::span<std::uint8_t> hits) {
+    for (std::size_t i = 0; i < batch.size(); ++i) hits[i] = fixed_hit(batch[i].ray, batch[i].box, format_) ? 1 : 0;
+}
+
+RayTraversal::RayTraversal(const Accel& a, ChildOrder o) : accel_(&a), order_(o), policy_(a) {
+    if (!a.quantized) throw std::logic_error("RayTraversal: the Accel is not quantised");
+    if (o == ChildOrder::Dist) check_combination(BoxTestKind::Fixed, o);
+    stack_.reserve(kMaxStack);
+}
+
+void RayTraversal::start(const Ray& r, bool any_hit) {
+    any_hit_ = any_hit;
+    best_ = Hit{};
+    best_.t = r.tmax;
+    stats_ = TraversalStats{};
+    stack_.clear();
+    pending_ = 0;
+    state_ = policy_.setup(r);
+    if (!policy_.live(state_)) {
+        done_ = true;
+        return;
+    }
+    done_ = false;
+    tri_ = tri_setup(r);
+    cls_ = ray_class(r.d);
+    root_pending_ = true;
+    emit(0, 0);
+    pending_ = 1;
+}
+
+void RayTraversal::emit(std::uint32_t node, std::size_t slot) {
+    BoxQuery& q = queries_[slot];
+    q.query = Query{state_.ray, accel_->nodes[node].box};
+    q.ray = state_.fr;
+    q.box = accel_->qboxes[node];
+    q.node = node;
+}
+
+bool RayTraversal::pop(std::uint32_t& node) {
+    if (stack_.empty()) return false;
+    node = stack_.back();
+    stack_.pop_back();
+    return true;
+}
+
+void RayTraversal::resume(std::span<const std::uint8_t> hits) {
+    if (done_ || hits.size() != pending_) throw std::logic_error("RayTraversal::resume: answers do not match");
+    stats_.box_tests += pending_;
+    std::uint32_t next;
+    if (root_pending_) {
+        root_pending_ = false;
+        if (!hits[0]) {
+            done_ = true;
+            return;
+        }
+        next = 0;
+    } else {
+        const std::uint32_t c0 = static_cast<std::uint32_t>(accel_->nodes[node_].first);
+        const bool h0 = hits[0] != 0, h1 = hits[1] != 0;
+        if (h0 && h1) {
+            const bool swap = order_ == ChildOrder::Dsa && dsa_first_child(cls_, accel_->nodes[node_].axis()) != 0;
+            stack_.push_back(swap ? c0 : c0 + 1);
+            next = swap ? c0 + 1 : c0;
+        } else if (h0 || h1) {
+            next = h0 ? c0 : c0 + 1;
+        } else if (!pop(next)) {
+            done_ = true;
+            return;
+        }
+    }
+    advance(next);
+}
+
+// Visits nodes from `node` on until an interior node needs its children
+// tested (queries emitted) or the traversal ends.
+void RayTraversal::advance(std::uint32_t node) {
+    const LeafTri* tris = accel_->tris.data();
+    for (;;) {
+        ++stats_.node_visits;
+        const BvhNode& n = accel_->nodes[node];
+        if (!n.is_leaf()) {
+            node_ = node;
+            const std::uint32_t c0 = static_cast<std::uint32_t>(n.first);
+            emit(c0, 0);
+            emit(c0 + 1, 1);
+            pending_ = 2;
+            return;
+        }
+        const float before = best_.t;
+        const std::uint32_t end = static_cast<std::uint32_t>(n.first + n.count);
+        for (std::uint32_t i = static_cast<std::uint32_t>(n.first); i < end; ++i) {
+            ++stats_.tri_tests;
+            const LeafTri& tri = tris[i];
+            float t, b1, b2;
+            if (tri_intersect(tri_, tri.v0, tri.v1, tri.v2, best_.t, t, b1, b2) && closer(t, tri.id, best_)) {
+                best_ = Hit{t, b1, b2, tri.id};
+                if (any_hit_) {
+                    done_ = true;
+                    return;
+                }
+            }
+        }
+        if (best_.t < before) policy_.shrink(state_, best_.t);
+        if (!pop(node)) {
+            done_ = true;
+            return;
+        }
+    }
+}
+
+void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
+                 const std::function<bool(BatchRay&)>& next, const std::function<void(const BatchResult&)>& finish,
+                 TraversalStats& st, BatchStats* bs) {
+    if (pool == 0) throw InputError("--pool: must be at least 1");
+    std::vector<RayTraversal> slots(pool, RayTraversal(a, o));
+    std::vector<std::uint64_t> tags(pool);
+    std::vector<bool> busy(pool, false);
+    std::vector<BoxQuery> batch;
+    std::vector<std::uint8_t> hits;
+    batch.reserve(2 * pool);
+    hits.reserve(2 * pool);
+    bool source_open = true;  // next() has not yet said "none" since the last finish()
+    std::size_t in_flight = 0;
+
+    auto complete = [&](std::size_t i) {
+        busy[i] = false;
+        --in_flight;
+        st += slots[i].stats();
+        finish(BatchResult{tags[i], slots[i].hit()});
+        source_open = true;
+    };
+    auto fill = [&] {
+        for (std::size_t i = 0; i < pool && source_open; ++i) {
+            while (!busy[i] && source_open) {
+                BatchRay br;
+                if (!next(br)) {
+                    source_open = false;
+                    break;
+                }
+                tags[i] = br.tag;
+                busy[i] = true;
+                ++in_flight;
+                slots[i].start(br.ray, br.any_hit);
+                if (slots[i].done()) complete(i);  // missed the clip cube
+            }
+        }
+    };
+
+    for (;;) {
+        fill();
+        if (in_flight == 0) {
+            if (!source_open) break;
+            continue;
+        }
+        batch.clear();
+        for (std::size_t i = 0; i < pool; ++i)
+            if (busy[i])
+                for (const BoxQuery& q : slots[i].pending()) batch.push_back(q);
+        hits.assign(batch.size(), 0);
+        engine.test(batch, hits);
+        if (bs) {
+            ++bs->batches;
+            bs->queries += batch.size();
+            if (batch.size() > bs->max_batch) bs->max_batch = batch.size();
+        }
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < pool; ++i) {
+            if (!busy[i]) continue;
+            const std::size_t n = slots[i].pending().size();
+            slots[i].resume(std::span<const std::uint8_t>(hits.data() + k, n));
+            k += n;
+            if (slots[i].done()) complete(i);
+        }
+    }
+}
+
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
+    std::vector<Hit> out(rays.size());
+    std::size_t next_ray = 0;
+    run_batched(
+        a, o, engine, pool,
+        [&](BatchRay& br) {
+            if (next_ray == rays.size()) return false;
+            br = BatchRay{rays[next_ray], any_hit, next_ray};
+            ++next_ray;
+            return true;
+        },
+        [&](const BatchResult& r) { out[r.tag] = r.hit; }, st);
+    return out;
+}
+
+}  // namespace pluecker
