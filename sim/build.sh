@@ -4,7 +4,8 @@
 # rtl/pluecker_intersector.sv verilated with -G parameters, the harness in
 # sim/, and the golden model library (build/model/libpluecker_model.a).
 #
-# Settings (environment): COORD_BITS, DIR_BITS (6..24, default 16),
+# Settings (environment): COORD_BITS, DIR_BITS (the port contract's limits,
+# 6..24; default 16),
 # MODE (conservative|nearest, default conservative), SIM_TAG_BITS (default 8),
 # MODEL_BUILD (default build/model), SIM_RTL (default
 # rtl/pluecker_intersector.sv), SIM_OUT (default build/sim/<C>x<D>[_nearest]),
@@ -26,10 +27,13 @@ D="${DIR_BITS:-16}"
 MODE="${MODE:-conservative}"
 T="${SIM_TAG_BITS:-8}"
 jobs="${SIM_JOBS:-2}"
+# The width limits of the port contract (rtl/pluecker_contract.json).
+read -r lo hi < <(python3 "$root/scripts/contract.py" limits) || true
+[[ "${lo:-}" =~ ^[0-9]+$ && "${hi:-}" =~ ^[0-9]+$ ]] || die "cannot read the port contract (scripts/contract.py limits)"
 for v in "COORD_BITS=$C" "DIR_BITS=$D"; do
   val="${v#*=}"
-  [[ "$val" =~ ^[0-9]+$ ]] && ((10#$val >= 6 && 10#$val <= 24)) ||
-    die "${v%%=*}=$val is not an integer in 6..24"
+  [[ "$val" =~ ^[0-9]+$ ]] && ((10#$val >= lo && 10#$val <= hi)) ||
+    die "${v%%=*}=$val is not an integer in $lo..$hi"
 done
 C=$((10#$C))
 D=$((10#$D))
@@ -66,8 +70,9 @@ incs=(-I"$root/model/include" -I"$root/model/cli")
 [[ -n "$glm_inc" && "$glm_inc" != /usr/include ]] && incs+=(-I"$glm_inc")
 libs=("$lib" -lassimp "${gmpxx_lib:--lgmpxx}" "${gmp_lib:--lgmp}" -pthread)
 
-# Waivers that come with the RTL (rtl/*.vlt), and the RTL directory for
-# submodules (one module per file).
+# Waivers that come with the RTL (rtl/*.vlt), the RTL directory for
+# submodules (one module per file) and the port contract's package, which
+# -y does not find.
 rtl_dir="$(dirname "$rtl")"
 shopt -s nullglob
 vlt=("$rtl_dir"/*.vlt)
@@ -90,7 +95,7 @@ verilator --cc --exe --build -O3 --x-assign fast --x-initial fast -Wall \
   -CFLAGS "-std=c++20 -ffp-contract=off ${incs[*]} $defs" \
   -LDFLAGS "${libs[*]}" \
   -MAKEFLAGS "OPT_FAST=-O3 OPT_SLOW=-O1 OPT_GLOBAL=-O1" \
-  "${vlt[@]}" "$rtl" \
+  "${vlt[@]}" "$rtl_dir/pluecker_contract_pkg.sv" "$rtl" \
   "$root"/sim/{main,cmd_query,cmd_render,cmd_bench,cmd_gen,rtl_intersector,rtl_engine}.cpp \
   "$root"/model/cli/args.cpp > "$out/build.log" 2>&1 ||
   {
