@@ -6,7 +6,8 @@
 #
 #   fpga/formal/run.sh                 what `make formal` runs: prove (k-
 #                                      induction) at FORMAL_PROVE_CONFIGS, bmc
-#                                      (bounded, depth >= 20) at FORMAL_BMC_CONFIGS,
+#                                      (bounded, depth 12 at FIFO depth 16) at
+#                                      FORMAL_BMC_CONFIGS,
 #                                      cover at FORMAL_COVER_CONFIGS
 #   FORMAL_TASKS="prove cover bmc" fpga/formal/run.sh   these tasks at every
 #                                      configuration of the three lists
@@ -22,6 +23,7 @@
 # (default "6x6p1 6x18 18x18": S2x stages 1, 1, 2, MUL_ADD 0, 1, 2; their
 # FIFO depth is 16, where the k-induction does not finish within 10 minutes
 # with z3 4.8.12, see README.md), FORMAL_COVER_CONFIGS (default "6x6"),
+# FORMAL_BMC_DEPTH (bmc depth at FIFO depth 16, default 12),
 # FORMAL_TASKS (overrides the task lists), FORMAL_JOBS (parallel tasks, default 2), FORMAL_OUT (default
 # build/formal), FORMAL_RTL (default rtl/), VENV (default .venv). Exit status
 # 0 only when every task passes (and, with --mutants, every mutant fails).
@@ -77,8 +79,11 @@ make_sby() {  # <dest.sby> <config> <rtl dir>
   # Long enough to fill the FIFO, drain it and see every cover point (30 at
   # LATENCY 6, FIFO_DEPTH 8).
   local cover_depth=$((2 * fifo_depth + latency + 8))
-  # 20, or enough to fill the FIFO from reset with the output blocked.
-  local bmc_depth=$((fifo_depth + latency + 4 > 20 ? fifo_depth + latency + 4 : 20))
+  # 20 at FIFO depth 8 (the mutants' check); FORMAL_BMC_DEPTH (default 12)
+  # at the deeper FIFO, where each step beyond about 12 costs minutes with
+  # z3 4.8.12 (27 steps would fill the 16 entries from reset).
+  local bmc_depth=20
+  ((fifo_depth > 8)) && bmc_depth=${FORMAL_BMC_DEPTH:-12}
   local line k
   while IFS= read -r line; do
     case "$line" in
