@@ -15,7 +15,7 @@ ENV   := scripts/venv-exec.sh
 CLI   := $(BUILD)/pluecker
 OUT   := out
 
-.PHONY: all setup build main test test-cpp test-tb lint bench clean
+.PHONY: all setup build main test test-cpp test-tb lint contract bench clean
 
 all: main
 
@@ -59,6 +59,13 @@ test-cpp: build
 
 lint: setup
 	$(ENV) scripts/lint.sh
+
+# The port contract's generated files (rtl/pluecker_contract_pkg.sv, read by
+# the RTL; rtl/pluecker_contract.json, read by scripts/contract.py), written
+# from model/core/src/contract.cpp. The test Contract.GeneratedFilesAreCurrent
+# fails until they are regenerated after a change of the contract.
+contract: build
+	$(CLI) contract --write rtl
 
 test-tb: build
 	PLUECKER_PY_DIR=$(CURDIR)/$(BUILD) $(ENV) python -m pytest -n $(JOBS) tb

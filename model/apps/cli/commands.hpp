@@ -18,5 +18,6 @@ int cmd_render(const std::vector<std::string>& argv);
 int cmd_trace(const std::vector<std::string>& argv);
 int cmd_plan(const std::vector<std::string>& argv);
 int cmd_study(const std::vector<std::string>& argv);
+int cmd_contract(const std::vector<std::string>& argv);
 
 }  // namespace pluecker::cli

@@ -17,6 +17,7 @@ constexpr const char* kUsage =
     "  trace    write the ray/box queries a traversal issues\n"
     "  plan     pick the smallest fixed-point widths a scene needs\n"
     "  study    extra traversal work and accuracy per fixed-point width\n"
+    "  contract the RTL's port contract; writes or checks its generated files\n"
     "run 'pluecker <command> --help' for its options\n";
 
 }  // namespace
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
         if (cmd == "trace") return cmd_trace(rest);
         if (cmd == "plan") return cmd_plan(rest);
         if (cmd == "study") return cmd_study(rest);
+        if (cmd == "contract") return cmd_contract(rest);
         std::fprintf(stderr, "pluecker: unknown command '%s'\n%s", cmd.c_str(), kUsage);
         return 2;
     } catch (const pluecker::InputError& e) {

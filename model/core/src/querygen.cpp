@@ -9,6 +9,7 @@
 // one origin coordinate or tmax by a single float ulp.
 #include "pluecker/querygen.hpp"
 
+#include "pluecker/contract.hpp"
 #include "pluecker/rng.hpp"
 
 #include <algorithm>
@@ -726,8 +727,9 @@ std::size_t extreme_family_count() { return kFamilyCount; }
 const char* extreme_family_name(std::size_t i) { return i < kFamilyCount ? kFamilies[i].name : "?"; }
 
 std::vector<Query> setup_queries(std::uint64_t seed, std::size_t n, int coord_bits, std::vector<std::size_t>* families) {
-    if (coord_bits < 6 || coord_bits > 24)
-        throw InputError("setup_queries: COORD_BITS = " + std::to_string(coord_bits) + " is outside 6..24");
+    if (coord_bits < ContractLimits::kMinBits || coord_bits > ContractLimits::kMaxBits)
+        throw InputError("setup_queries: COORD_BITS = " + std::to_string(coord_bits) + " is outside " +
+                         std::to_string(ContractLimits::kMinBits) + ".." + std::to_string(ContractLimits::kMaxBits));
     Rng g(seed ^ 0x5345545550513121ull ^ (static_cast<std::uint64_t>(coord_bits) << 56));
     return round_robin(n, kSetupFamilyCount, families,
                        [&](std::size_t f) { return fit_range(kSetupFamilies[f].make(g, coord_bits), coord_bits); });

@@ -33,6 +33,13 @@ FixedMode parse_fixed_mode(const std::string& s) {
     throw InputError("mode '" + s + "' is not one of conservative, nearest");
 }
 
+MulStyle parse_mul_style(const std::string& s) {
+    if (s == "auto") return MulStyle::Auto;
+    if (s == "dsp") return MulStyle::Dsp;
+    if (s == "lut") return MulStyle::Lut;
+    throw InputError("MUL_STYLE '" + s + "' is not one of auto, dsp, lut");
+}
+
 // ---------------------------------------------------------------------------
 // Widths
 

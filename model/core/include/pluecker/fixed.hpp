@@ -3,7 +3,8 @@
 // the ray set-up that feeds the RTL, and the bit-exact datapath.
 //
 // ---------------------------------------------------------------------------
-// Format (COORD_BITS = C, DIR_BITS = D, each 6..24)
+// Format (COORD_BITS = C, DIR_BITS = D, each 6..24: the port contract's
+// limits, contract.hpp)
 //
 //   coordinate  C-bit two's complement, value = q * 2^-(C-2): the range is
 //               the grid [-2, 2 - 2^-(C-2)] (at C = 6: [-2, 1.9375], at
@@ -107,6 +108,7 @@
 // ---------------------------------------------------------------------------
 #pragma once
 
+#include "pluecker/contract.hpp"
 #include "pluecker/geometry.hpp"
 
 #include <array>
@@ -119,10 +121,11 @@ namespace pluecker {
 enum class FixedMode { Conservative, Nearest };
 
 struct FixedFormat {
-    static constexpr int kMinBits = 6;
-    static constexpr int kMaxBits = 24;
-    static constexpr int kDefaultCoordBits = 16;
-    static constexpr int kDefaultDirBits = 16;
+    // The RTL's limits and defaults (the port contract, contract.hpp).
+    static constexpr int kMinBits = ContractLimits::kMinBits;
+    static constexpr int kMaxBits = ContractLimits::kMaxBits;
+    static constexpr int kDefaultCoordBits = ContractDefaults::kCoordBits;
+    static constexpr int kDefaultDirBits = ContractDefaults::kDirBits;
 
     int coord_bits = kDefaultCoordBits;
     int dir_bits = kDefaultDirBits;

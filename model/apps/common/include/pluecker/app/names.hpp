@@ -6,6 +6,7 @@
 #pragma once
 
 #include "pluecker/bvh.hpp"
+#include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/study.hpp"
 #include "pluecker/traversal.hpp"
@@ -19,6 +20,7 @@ BoxTestKind parse_box_test(const std::string& s);      // exact | smits | plueck
 ChildOrder parse_child_order(const std::string& s);    // fixed | dsa | dist
 BuildMethod parse_build_method(const std::string& s);  // median | sah
 FixedMode parse_fixed_mode(const std::string& s);      // conservative | nearest
+MulStyle parse_mul_style(const std::string& s);        // auto | dsp | lut (the RTL's MUL_STYLE)
 
 // Width list of --widths (`flag` names it in errors):
 //   "A:B:S"          A, A+S, ..., <= B, COORD_BITS = DIR_BITS (S >= 1;

@@ -1,0 +1,108 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""The port contract of rtl/pluecker_intersector.sv, for the scripts.
+
+Reads rtl/pluecker_contract.json, generated from the model's port contract
+(model/core/include/pluecker/contract.hpp) by `pluecker contract --write rtl` and
+checked by the test Contract.GeneratedFilesAreCurrent. Nothing here derives
+a constant: every value is looked up in the file's table of configuration
+classes. Used by scripts/synth.py (import), scripts/lint.sh,
+fpga/formal/run.sh and sim/build.sh (command line).
+
+Command line (one answer a line, for shell scripts):
+  contract.py limits                 "<min> <max>" widths (COORD_BITS, DIR_BITS)
+  contract.py row C D [--mul-style S] [--pipeline P]
+                                     key=value lines of the configuration's row
+                                     (multiplier, mul_add, s2x_stages, latency,
+                                     fifo_depth, mult18x18d); exit 2 if the RTL
+                                     refuses the configuration
+  contract.py classes                one class a line: coord_lo coord_hi dir_lo
+                                     dir_hi mul_style pipeline multiplier mul_add
+                                     s2x_stages latency fifo_depth mult18x18d
+Option --file PATH reads another copy of the table.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract.json"
+ROW_KEYS = ("multiplier", "mul_add", "s2x_stages", "latency", "fifo_depth", "mult18x18d")
+
+
+class ContractError(ValueError):
+    """A configuration the RTL refuses (outside every class of the table)."""
+
+
+_cache: dict[Path, dict] = {}
+
+
+def load(path: Path | str | None = None) -> dict:
+    p = Path(path) if path else CONTRACT_JSON
+    if p not in _cache:
+        with open(p) as f:
+            _cache[p] = json.load(f)
+    return _cache[p]
+
+
+def limits(path: Path | str | None = None) -> tuple[int, int]:
+    """(min, max) of COORD_BITS and DIR_BITS."""
+    lo, hi = load(path)["limits"]["coord_bits"]
+    return int(lo), int(hi)
+
+
+def defaults(path: Path | str | None = None) -> dict:
+    return dict(load(path)["defaults"])
+
+
+def classes(path: Path | str | None = None) -> list[dict]:
+    return list(load(path)["classes"])
+
+
+def row(coord_bits: int, dir_bits: int, mul_style: str = "auto", pipeline: int = 0,
+        path: Path | str | None = None) -> dict:
+    """The class holding the configuration (a dict: coord_bits [lo, hi],
+    dir_bits [lo, hi], mul_style, pipeline and the ROW_KEYS values)."""
+    for k in classes(path):
+        (clo, chi), (dlo, dhi) = k["coord_bits"], k["dir_bits"]
+        if (clo <= coord_bits <= chi and dlo <= dir_bits <= dhi and k["mul_style"] == mul_style
+                and k["pipeline"] == pipeline):
+            return k
+    raise ContractError(f"COORD_BITS={coord_bits} DIR_BITS={dir_bits} MUL_STYLE={mul_style} "
+                        f"PIPELINE={pipeline} is in no class of the port contract ({CONTRACT_JSON.name})")
+
+
+def main(argv: list[str]) -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--file", default=None, help="contract table (default rtl/pluecker_contract.json)")
+    sub = p.add_subparsers(dest="cmd", required=True)
+    sub.add_parser("limits")
+    r = sub.add_parser("row")
+    r.add_argument("coord_bits", type=int)
+    r.add_argument("dir_bits", type=int)
+    r.add_argument("--mul-style", default="auto")
+    r.add_argument("--pipeline", type=int, default=0)
+    sub.add_parser("classes")
+    args = p.parse_args(argv)
+    if args.cmd == "limits":
+        print(*limits(args.file))
+    elif args.cmd == "row":
+        try:
+            k = row(args.coord_bits, args.dir_bits, args.mul_style, args.pipeline, args.file)
+        except ContractError as e:
+            print(f"contract: {e}", file=sys.stderr)
+            return 2
+        for key in ROW_KEYS:
+            print(f"{key}={k[key]}")
+    else:
+        for k in classes(args.file):
+            print(*k["coord_bits"], *k["dir_bits"], k["mul_style"], k["pipeline"],
+                  *(k[key] for key in ROW_KEYS))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
