@@ -35,13 +35,13 @@ def corner_values(w: int) -> list[int]:
         vals.add(to_signed(~(1 << k), w))
         vals.add(to_signed((1 << k) - 1, w))
         vals.add(to_signed(-((1 << k) - 1), w))
-    return sorted(vals)
+    return sorted({to_signed(v, w) for v in vals})  # (at small widths some wrap: keep them in range)
 
 
 def core_values(w: int) -> list[int]:
     """min, min + 1, -1, 0, 1, max - 1, max."""
     lo, hi = -(1 << (w - 1)), (1 << (w - 1)) - 1
-    return sorted({lo, lo + 1, -1, 0, 1, hi - 1, hi})
+    return sorted({to_signed(v, w) for v in (lo, lo + 1, -1, 0, 1, hi - 1, hi)})
 
 
 def corner_pairs(rng: random.Random, wa: int, wb: int, n_cross: int = 500) -> list[tuple[int, int]]:
