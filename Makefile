@@ -282,8 +282,11 @@ peer: setup
 #                   REGRESS_N extreme queries through the Verilated RTL at
 #                   REGRESS_WIDTHS (built with ASSERT_ON in build/regress/sim;
 #                   zero mismatches against the model, zero false misses
-#                   against exact), and the long cocotb stress bench (its
-#                   sizes scale with REGRESS_N). Summary in
+#                   against exact), the long cocotb stress bench (its
+#                   sizes scale with REGRESS_N) and the long cocotb sweeps
+#                   (PLUECKER_LONG=1: the intersector at every width pair of
+#                   its sweep in both modes, the multipliers; not yet timed
+#                   at full size). Summary in
 #                   build/regress/summary.txt. About 20 min on 2 quiet
 #                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
 #                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
@@ -293,7 +296,7 @@ peer: setup
 #                   FORMAL_FLAGS=--mutants also checks that four seeded RTL
 #                   bugs are caught. Logs in build/formal/.
 REGRESS_N      ?= 1000000
-REGRESS_WIDTHS ?= 6x6 9x15 16x16 22x22 23x23 24x24 16x16n
+REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
 FORMAL_FLAGS   ?=
 
 .PHONY: sim-regress formal

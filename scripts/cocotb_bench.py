@@ -42,7 +42,7 @@ def main() -> int:
     if not any(py_dir.glob("pluecker_py*.so")):
         print(f"cocotb_bench: no pluecker_py module in {py_dir} (run `make build`)", file=sys.stderr)
         return 2
-    for d in (str(py_dir), str(TB)):
+    for d in (str(py_dir), str(TB), str(REPO / "tb")):  # the bench and the pluecker_tb package
         if d not in sys.path:
             sys.path.insert(0, d)  # the runner hands sys.path to the simulator
     from cocotb_tools.runner import VerilatorControlFile, get_results, get_runner

@@ -20,16 +20,23 @@
 #      directories (REGRESS_SIM_ROOT), so that it does not force `make sim`'s
 #      builds to be redone;
 #   3. cocotb: the long stress bench (PLUECKER_LONG=1
-#      tb/pluecker_intersector/test_stress.py), its sizes scaled with REGRESS_N
-#      (25x the `make test` sizes at 10^6, never below 1x).
+#      tb/pluecker_intersector/test_stress.py: LATENCY 6, 7 and 8), its sizes
+#      scaled with REGRESS_N (25x the `make test` sizes at 10^6, never below
+#      1x);
+#   4. sweep: the long cocotb sweeps (PLUECKER_LONG=1): the intersector at
+#      every width pair of its sweep in both modes and its DSP builds
+#      (tb/pluecker_intersector/test_pluecker_intersector.py), and the
+#      multipliers and the MULT18X18D model checks (tb/pluecker_mul,
+#      tb/pluecker_mul_lut, tb/mult18x18d), 25x the `make test` queries.
 #
 # Environment: MODEL_BUILD (default build/model; must hold model_tests,
 # pluecker and the Python module), JOBS (default 2), REGRESS_N,
-# REGRESS_WIDTHS (default "6x6 9x15 16x16 22x22 23x23 24x24 16x16n"; a trailing n =
-# nearest mode, where the exact comparison is skipped), REGRESS_SIM_ROOT
+# REGRESS_WIDTHS (default "6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n":
+# LATENCY 6, 7 and 8; a trailing n = nearest mode, where the exact comparison
+# is skipped), REGRESS_SIM_ROOT
 # (default build/regress/sim), REGRESS_ASSERT (default 1: SIM_ASSERT for the
 # harness), REGRESS_OUT (default build/regress), REGRESS_PARTS (default
-# "model rtl cocotb").
+# "model rtl cocotb sweep").
 # Exit status 0 only when every part passes. Run through scripts/venv-exec.sh
 # (the Makefile does).
 set -euo pipefail
@@ -38,11 +45,11 @@ cd "$root"
 model_build="$(cd "${MODEL_BUILD:-build/model}" && pwd)"
 jobs="${JOBS:-2}"
 n="${REGRESS_N:-1000000}"
-widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 22x22 23x23 24x24 16x16n}"
+widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n}"
 sim_root="${REGRESS_SIM_ROOT:-build/regress/sim}"
 sim_assert="${REGRESS_ASSERT:-1}"
 out="${REGRESS_OUT:-build/regress}"
-parts="${REGRESS_PARTS:-model rtl cocotb}"
+parts="${REGRESS_PARTS:-model rtl cocotb sweep}"
 mkdir -p "$out"
 summary="$out/summary.txt"
 : > "$summary"
@@ -136,6 +143,20 @@ if [[ " $parts " == *" cocotb "* ]]; then
   else
     say "cocotb: long stress FAIL ($(elapsed "$t0"); log $out/cocotb.log)"
     tail -5 "$out/cocotb.log" | tee -a "$summary"
+    fail=1
+  fi
+fi
+
+# --- 4. cocotb sweeps ------------------------------------------------------------------
+if [[ " $parts " == *" sweep "* ]]; then
+  t0=$(date +%s)
+  if PLUECKER_LONG=1 PLUECKER_PY_DIR="$model_build" python -m pytest -n "$jobs" -q \
+    tb/pluecker_intersector/test_pluecker_intersector.py tb/pluecker_mul tb/pluecker_mul_lut tb/mult18x18d \
+    > "$out/sweep.log" 2>&1; then
+    say "sweep: long cocotb sweeps PASS ($(elapsed "$t0"); log $out/sweep.log)"
+  else
+    say "sweep: long cocotb sweeps FAIL ($(elapsed "$t0"); log $out/sweep.log)"
+    tail -5 "$out/sweep.log" | tee -a "$summary"
     fail=1
   fi
 fi

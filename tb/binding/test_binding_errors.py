@@ -14,7 +14,10 @@ import math
 
 import pytest
 
-pp = pytest.importorskip("pluecker_py")
+try:
+    import pluecker_py as pp
+except ImportError as e:  # a missing model build fails the run, never skips it
+    raise ImportError(f"pluecker_py not found (PLUECKER_PY_DIR; `make build` builds it): {e}") from e
 
 NAN = math.nan
 INF = math.inf

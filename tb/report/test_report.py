@@ -19,8 +19,7 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 
 def run_report(tmp_path, synth_dir, extra=()):
-    if not CLI.exists():
-        pytest.skip(f"{CLI} not built")
+    assert CLI.exists(), f"{CLI} not built (make build)"
     out = tmp_path / "report"
     r = subprocess.run([sys.executable, str(ROOT / "scripts" / "report.py"), "--cli", str(CLI),
                         "--scenes", "sphere:500", "--widths", "8,16", "--size", "16", "--rtl-widths", "",

@@ -1,5 +1,6 @@
 # SPDX-License-Identifier: MIT
-"""Stimulus for the pluecker_intersector bench.
+"""Stimulus for the pluecker_intersector benches (test_pluecker_intersector,
+test_stress).
 
 Every expected result comes from the golden model (pluecker_py); this module
 only chooses operands and never computes a test itself.
