@@ -9,11 +9,25 @@ COORD_BITS ?= 16
 DIR_BITS   ?= 16
 SCENE      ?= teapot
 SIZE       ?= 256
+MODE       ?= conservative
 
 BUILD := build/model
 ENV   := scripts/venv-exec.sh
 CLI   := $(BUILD)/pluecker
 OUT   := out
+
+# The main job's outputs and its report's width sweep.
+MAIN_MODEL        = $(OUT)/$(SCENE)_model_$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
+MAIN_RTL          = $(OUT)/$(SCENE)_rtl_$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
+MAIN_SWEEP_SIZE   ?= 64
+MAIN_SWEEP_WIDTHS ?= 8:24:4
+
+# PLAN=FILE includes a plan file written by `make plan` (COORD_BITS := ..),
+# e.g. `make synth PLAN=out/plan.mk`; widths given on the command line
+# still win. Its values reach every recipe expanded at run time.
+ifdef PLAN
+include $(PLAN)
+endif
 
 .PHONY: all setup build main test test-cpp test-tb lint contract bench clean
 
@@ -27,9 +41,9 @@ build: setup
 	  || { cat $(BUILD).configure.log; exit 1; }
 	@cmake --build $(BUILD) -j$(JOBS)
 
-# The main job (recipe: study helper's block below): the golden-model render
-# of SCENE with the fixed-point test, the same render with every box test
-# answered by the Verilated RTL (the sim block's sim-render), their byte-for-
+# The main job: the golden-model render of SCENE with the fixed-point
+# test, the same render with every box test answered by the Verilated RTL
+# (sim-render, in the harness section), their byte-for-
 # byte comparison (fails loudly), and out/report/main.html.
 main: build
 	@mkdir -p $(OUT)/report
@@ -51,7 +65,7 @@ main: build
 
 # The whole suite, as .ci/run runs it: C++ tests, lint, the pytest/cocotb
 # suite, the C++ tests again under ASan + UBSan (test-sanitize) and the
-# formal proof of the handshake rules (formal); both in blocks below.
+# formal proof of the handshake rules (formal); both in sections below.
 test: test-cpp lint test-tb test-sanitize formal
 
 test-cpp: build
@@ -86,13 +100,12 @@ bench: build
 clean:
 	rm -rf build out
 
-# ---- Verilator harness (sim/; owner: sim helper) --------------------------
+# ---- Verilator harness (sim/) ------------------------------------------------
 # make sim         builds build/sim/<C>x<D>[_nearest]/pluecker_sim
 # make sim-query   streams QUERIES (default: generated) through the RTL, --check
 # make sim-render  hardware-in-the-loop render of SCENE at SIM_SIZE into out/
 # make sim-bench   RTL throughput (queries per second)
 # Variables: COORD_BITS, DIR_BITS, MODE (conservative|nearest), SIM_TAG_BITS.
-MODE         ?= conservative
 SIM_TAG_BITS ?= 8
 SIM_SIZE     ?= $(SIZE)
 SIM_N        ?= 2000000
@@ -118,10 +131,9 @@ sim-render: sim
 
 sim-bench: sim
 	$(SIM_BIN) bench --n $(SIM_N)
-# ---- end of the Verilator harness block -----------------------------------
 
 # ---- FPGA flow: ECP5 LFE5U-85F synthesis and place-and-route ---------------
-# (owned by the FPGA flow; scripts/synth.py, fpga/). Results per width pair in
+# (scripts/synth.py, fpga/). Results per width pair in
 # out/synth/<C>x<D>/summary.json. Extra flags: SYNTH_FLAGS=--no-pnr etc.
 SEEDS       ?= 3
 SPEEDS      ?= 6 8
@@ -138,10 +150,9 @@ synth: setup
 # synthesises, places and routes (out/synth-smoke/).
 synth-smoke: setup
 	$(ENV) python scripts/synth.py --smoke --freq $(FREQ) $(SYNTH_FLAGS)
-# ---- end of FPGA flow -------------------------------------------------------
 
 # ---- Hostile input: fuzzing, sanitizers, the hostile-input table ------------
-# (owned by the hostile-input helper; scripts/fuzz.sh, model/fuzz/,
+# (scripts/fuzz.sh, model/fuzz/,
 # model/tests/test_hostile.cpp, scripts/hostile_table.py)
 # make fuzz            libFuzzer targets of model/fuzz/ (clang, ASan + UBSan) in
 #                      build/fuzz, FUZZ_SECONDS each; findings in build/fuzz/artifacts/
@@ -175,9 +186,8 @@ test-sanitize: setup
 
 hostile-table: build
 	$(ENV) python scripts/hostile_table.py --cli $(CLI)
-# ---- end of hostile input ----------------------------------------------------
 
-# ---- Width study, plan and report (owner: study helper) ---------------------
+# ---- Width study, plan and report -------------------------------------------
 # make report   speed-for-accuracy report of every scene (teapot, spheres,
 #               ../shared/scenes/* when present) over REPORT_WIDTHS at
 #               REPORT_SIZE: out/report/report.html + report.json.
@@ -185,13 +195,6 @@ hostile-table: build
 #               REPORT_RTL_WIDTHS: widths of the RTL vs model check.
 # make plan     the narrowest widths whose extra box tests on SCENE stay within
 #               MAX_EXTRA_WORK percent; writes PLAN_OUT (make variables).
-# PLAN=FILE     includes a plan file (COORD_BITS := ..), e.g.
-#               `make synth PLAN=out/plan.mk`; widths given on the command line
-#               still win. Its values reach recipes expanded at run time
-#               (synth, main, report, plan), not variables fixed with := above.
-ifdef PLAN
-include $(PLAN)
-endif
 REPORT_WIDTHS     ?= 6:24:2
 REPORT_SIZE       ?= 128
 REPORT_SYNTH      ?= 0
@@ -202,10 +205,6 @@ MAX_EXTRA_WORK    ?= 1
 PLAN_WIDTHS       ?= 6:24
 PLAN_SIZE         ?= 128
 PLAN_OUT          ?= $(OUT)/plan.mk
-MAIN_SWEEP_SIZE   ?= 64
-MAIN_SWEEP_WIDTHS ?= 8:24:4
-MAIN_MODEL         = $(OUT)/$(SCENE)_model_$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
-MAIN_RTL           = $(OUT)/$(SCENE)_rtl_$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
 
 .PHONY: report plan
 
@@ -218,9 +217,8 @@ plan: build
 	@mkdir -p $(dir $(PLAN_OUT))
 	$(CLI) plan --scene $(SCENE) --max-extra-work $(MAX_EXTRA_WORK) --widths $(PLAN_WIDTHS) \
 	  --size $(PLAN_SIZE) --out $(PLAN_OUT)
-# ---- end of width study, plan and report ------------------------------------
 
-# ---- Report tables and Embree peer (owner: K-D tree helper) -----------------
+# ---- Report tables and Embree peer ------------------------------------------
 # make tables   the four tables of Mahovsky's 2005 report (box test, child
 #               order, median vs SAH BVH, BVH vs K-D tree), every
 #               configuration one after another on teapot, spheres,
@@ -270,9 +268,8 @@ peer: setup
 	@cmake --build $(PEER_BUILD) -j$(JOBS) --target pluecker_peer -- --no-print-directory
 	$(PEER_BUILD)/pluecker_peer --size $(PEER_SIZE) --random $(PEER_RANDOM) --repeat $(PEER_REPEAT) \
 	  --synthetic $(TABLES_SYNTH) --shared ../shared/scenes --out $(OUT)/peer $(if $(PEER_SCENES),--scenes $(PEER_SCENES))
-# ---- end of report tables and Embree peer -----------------------------------
 
-# ---- Reliability: long regression and formal (owner: reliability helper) ----
+# ---- Reliability: long regression and formal ----------------------------------
 # (scripts/regress.sh, fpga/formal/, tb/pluecker_intersector/test_stress.py,
 # model/tests/test_extremes.cpp, model/tests/test_margin_bound.cpp; the short
 # versions of all of them run in `make test`)
@@ -307,4 +304,3 @@ sim-regress: build
 
 formal: setup
 	@$(ENV) fpga/formal/run.sh $(FORMAL_FLAGS)
-# ---- end of reliability --------------------------------------------------------
