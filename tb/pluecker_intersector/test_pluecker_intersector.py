@@ -233,8 +233,10 @@ def test_pluecker_intersector(coord_bits: int, dir_bits: int, conservative: int,
                               build_args=VERILATOR_RTL_ARGS)
     if mul == "dsp-ecp5":
         # pluecker_mul's MULT18X18D instances (u_mult) are in the model
-        # Verilator made (possibly inlined into pluecker_mul).
-        assert any(b"u_mult__DOT__" in h.read_bytes() for h in build.dir.glob("Vtop*.h")), \
+        # Verilator made: a module of their own (Vtop_MULT18X18D*.h) or
+        # inlined into pluecker_mul (signals named u_mult__...).
+        assert (any(build.dir.glob("Vtop_MULT18X18D*.h"))
+                or any(b"u_mult__" in h.read_bytes() for h in build.dir.glob("Vtop*.h"))), \
             "the build has no MULT18X18D: not the DSP path"
     build.test("test_pluecker_intersector", plusargs=verilator_plusargs(_seed(name)),
                extra_env={"PLUECKER_TB_QUERIES": str(queries),
