@@ -11,7 +11,8 @@ BoxTestKind parse_box_test(const std::string& s) {
     if (s == "smits") return BoxTestKind::Smits;
     if (s == "pluecker") return BoxTestKind::Pluecker;
     if (s == "fixed") return BoxTestKind::Fixed;
-    throw InputError("--test: '" + s + "' is not one of exact, smits, pluecker, fixed");
+    if (s == "local") return BoxTestKind::Local;
+    throw InputError("--test: '" + s + "' is not one of exact, smits, pluecker, fixed, local");
 }
 
 ChildOrder parse_child_order(const std::string& s) {
