@@ -35,7 +35,6 @@ Environment
 from __future__ import annotations
 
 import os
-import random
 
 import pytest
 
@@ -49,8 +48,8 @@ _seed = config.seed
 
 try:
     import cocotb
-    from cocotb.triggers import ClockCycles
 
+    from pluecker_tb import bench as unit_tests
     from pluecker_tb.local import LocalBench
     from pluecker_tb.local import stimulus as _stimulus
 except ImportError:  # pragma: no cover - only the pytest runner part is usable
@@ -94,27 +93,7 @@ if cocotb is not None:
         bench = _bench(dut, _seed("local reset"), idle=True, backpressure=True)
         await bench.start()
         vectors = _stimulus(bench, "random", _n(1200), "reset")
-        resets = 0
-
-        async def reset_pulses() -> None:
-            nonlocal resets
-            rng = random.Random(bench.seed + 1)
-            while True:
-                await ClockCycles(dut.clk_i, rng.randint(10, 200))
-                dut.rst_i.value = 1
-                await ClockCycles(dut.clk_i, rng.choice([1, 1, 2, 3, 7]))
-                dut.rst_i.value = 0
-                resets += 1
-
-        pulses = cocotb.start_soon(reset_pulses())
-        await bench.drive(vectors)
-        pulses.cancel()
-        dut.rst_i.value = 0
-        await bench.drain()
-        assert resets >= 3, f"only {resets} resets happened"
-        assert bench.dropped > 0, "no reset hit a query in flight"
-        assert bench.compared + bench.dropped == bench.accepted == len(vectors), (
-            f"accepted {bench.accepted}, compared {bench.compared}, dropped {bench.dropped}")
+        resets = await unit_tests.reset_mid_stream(bench, vectors)
         bench.finish(f"reset ({resets} resets)")
 
     @cocotb.test()
@@ -130,27 +109,9 @@ if cocotb is not None:
         for port in contract.ports:
             assert len(getattr(dut, port.name)) == port.width, (
                 f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
-
-        # Phase 1: never stalled, so one query is taken every clock.
-        vectors = _stimulus(bench, "random", 200 * SCALE, "throughput")
-        await bench.drive(vectors)
-        await bench.drain()
-        n = len(vectors)
-        assert bench.in_edges[-1] - bench.in_edges[0] == n - 1, "input was not taken every clock"
-        assert bench.out_edges[-1] - bench.out_edges[0] == n - 1, "results did not come every clock"
-        assert set(bench.latencies) == {latency}, f"latency {dict(bench.latencies)}, LATENCY = {latency}"
-
-        # Phase 2: output blocked; exactly FIFO_DEPTH queries get in.
-        bench.ready_override = 0
+        await unit_tests.full_rate(bench, _stimulus(bench, "random", 200 * SCALE, "throughput"), latency)
         more = _stimulus(bench, "extreme", depth + 16, "credits")
-        before = bench.accepted
-        task = cocotb.start_soon(bench.drive(more))
-        await ClockCycles(dut.clk_i, depth + latency + 50)
-        assert bench.accepted - before == depth, f"{bench.accepted - before} taken with the output blocked"
-        bench.ready_override = None
-        await task
-        await bench.drain()
-        assert bench.compared == n + len(more)
+        await unit_tests.credits_stop_input(bench, more, latency, depth)
         bench.finish(f"throughput (LATENCY {latency}, FIFO_DEPTH {depth})")
 
 

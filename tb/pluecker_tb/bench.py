@@ -23,6 +23,7 @@ from __future__ import annotations
 import random
 
 import cocotb
+from cocotb.triggers import ClockCycles
 
 from . import clock_reset, traffic
 from .stream import InOrderScoreboard, StreamDriver, StreamSink, drain
@@ -132,3 +133,62 @@ class UnitBench:
         self.dut._log.info(
             "%s: %d results compared (%d hits), %d dropped by reset, %d cycles, latency histogram %s",
             what, self.compared, self.hits, self.dropped, self.edges, self.scoreboard.histogram())
+
+
+# ---------------------------------------------------------------------------
+# The tests every unit bench runs (the benches' cocotb tests call them)
+# ---------------------------------------------------------------------------
+
+async def reset_mid_stream(bench: UnitBench, vectors) -> int:
+    """Drives `vectors` while resets of 1..7 cycles come every 10..200
+    cycles: every query accepted before a reset must vanish (the bench's
+    scoreboard and sink check it); returns the number of resets."""
+    dut = bench.dut
+    resets = 0
+
+    async def reset_pulses() -> None:
+        nonlocal resets
+        rng = random.Random(bench.seed + 1)
+        while True:
+            await ClockCycles(dut.clk_i, rng.randint(10, 200))
+            dut.rst_i.value = 1
+            await ClockCycles(dut.clk_i, rng.choice([1, 1, 2, 3, 7]))
+            dut.rst_i.value = 0
+            resets += 1
+
+    pulses = cocotb.start_soon(reset_pulses())
+    await bench.drive(vectors)
+    pulses.cancel()
+    dut.rst_i.value = 0
+    await bench.drain()
+    assert resets >= 3, f"only {resets} resets happened"
+    assert bench.dropped > 0, "no reset hit a query in flight"
+    assert bench.compared + bench.dropped == bench.accepted == len(vectors), (
+        f"accepted {bench.accepted}, compared {bench.compared}, dropped {bench.dropped}")
+    return resets
+
+
+async def full_rate(bench: UnitBench, vectors, latency: int) -> None:
+    """Never stalled: one query taken and one result given every clock, each
+    after exactly `latency` cycles (the port contract's LATENCY)."""
+    await bench.drive(vectors)
+    await bench.drain()
+    n = len(vectors)
+    assert bench.in_edges[-1] - bench.in_edges[0] == n - 1, "input was not taken every clock"
+    assert bench.out_edges[-1] - bench.out_edges[0] == n - 1, "results did not come every clock"
+    assert set(bench.latencies) == {latency}, f"latency {dict(bench.latencies)}, LATENCY = {latency}"
+
+
+async def credits_stop_input(bench: UnitBench, more, latency: int, depth: int) -> None:
+    """Output blocked: exactly `depth` (the FIFO depth) of `more` get in,
+    the rest after the output is released; every result is compared."""
+    before_compared = bench.compared
+    bench.ready_override = 0
+    before = bench.accepted
+    task = cocotb.start_soon(bench.drive(more))
+    await ClockCycles(bench.dut.clk_i, depth + latency + 50)
+    assert bench.accepted - before == depth, f"{bench.accepted - before} taken with the output blocked"
+    bench.ready_override = None
+    await task
+    await bench.drain()
+    assert bench.compared - before_compared == len(more)

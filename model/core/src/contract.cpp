@@ -263,13 +263,7 @@ std::string contract_sv_package() {
     }
     s << "  endfunction\n";
     auto table = [&](const char* name, const char* type, const char* what, auto value) {
-        s << "\n  // " << what << " of class k.\n"
-          << "  function automatic " << type << " " << name << "(input int k);\n"
-          << "    case (k)\n";
-        for (std::size_t k = 0; k < classes.size(); ++k) s << "      " << k << ": " << name << " = " << value(classes[k]) << ";\n";
-        s << "      default: " << name << " = 0;\n"
-          << "    endcase\n"
-          << "  endfunction\n";
+        detail::write_sv_table(s, classes, name, type, what, value);
     };
     table("contract_mul_lut", "bit", "1: fabric multipliers (pluecker_mul_lut), 0: pluecker_mul",
           [](const ContractClass& c) { return c.fabric ? 1 : 0; });

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <ostream>
 #include <utility>
 #include <vector>
 
@@ -58,6 +59,20 @@ std::vector<std::pair<int, int>> width_runs(int first, int last, Signature signa
         lo = w;
     }
     return runs;
+}
+
+// One function of a generated contract package: `name`(k) is value(class
+// k) for every class k, 0 for any other k.
+template <class Classes, class Value>
+void write_sv_table(std::ostream& s, const Classes& classes, const char* name, const char* type, const char* what,
+                    Value value) {
+    s << "\n  // " << what << " of class k.\n"
+      << "  function automatic " << type << " " << name << "(input int k);\n"
+      << "    case (k)\n";
+    for (std::size_t k = 0; k < classes.size(); ++k) s << "      " << k << ": " << name << " = " << value(classes[k]) << ";\n";
+    s << "      default: " << name << " = 0;\n"
+      << "    endcase\n"
+      << "  endfunction\n";
 }
 
 }  // namespace pluecker::detail
