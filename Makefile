@@ -293,8 +293,8 @@ peer: setup
 #                   at 6/6, 6/6 PIPELINE=1, 6/18 and 18/18 (S2x stages 0, 1,
 #                   1, 2; MUL_ADD 0, 0, 1, 2), cover at 6/6: about 2.5 CPU
 #                   minutes, 5-6 min on 2 loaded cores (fpga/formal/README.md).
-#                   FORMAL_FLAGS=--mutants also checks that five seeded RTL
-#                   bugs are caught (20 s more). Logs in build/formal/.
+#                   FORMAL_FLAGS=--mutants also checks that six seeded RTL
+#                   bugs are caught (about 1 min more). Logs in build/formal/.
 REGRESS_N      ?= 1000000
 REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
 FORMAL_FLAGS   ?=
