@@ -288,10 +288,13 @@ peer: setup
 #                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
 #                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
 #                   end-to-end check (13 min loaded, builds included).
-# make formal       SymbiYosys (YoWASP) + z3: k-induction proof of the
-#                   handshake and flow-control properties at 6/6, and cover;
-#                   FORMAL_FLAGS=--mutants also checks that four seeded RTL
-#                   bugs are caught. Logs in build/formal/.
+# make formal       SymbiYosys (YoWASP) + z3: unbounded proof (1-step
+#                   k-induction) of the handshake and flow-control properties
+#                   at 6/6, 6/6 PIPELINE=1, 6/18 and 18/18 (S2x stages 0, 1,
+#                   1, 2; MUL_ADD 0, 0, 1, 2), cover at 6/6: about 2.5 CPU
+#                   minutes, 5-6 min on 2 loaded cores (fpga/formal/README.md).
+#                   FORMAL_FLAGS=--mutants also checks that six seeded RTL
+#                   bugs are caught (about 1 min more). Logs in build/formal/.
 REGRESS_N      ?= 1000000
 REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
 FORMAL_FLAGS   ?=
