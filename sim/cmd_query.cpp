@@ -125,12 +125,14 @@ int cmd_query(const std::vector<std::string>& argv) {
                          golden ? 1 : 0);
     }
     const StreamStats& st = rtl.stats();
-    const std::string what = operands ? "operand queries" : "queries";
-    std::fprintf(stderr,
-                 "check (%s): %zu %s (%zu through the RTL, %zu of them clipped onto the range cube; %zu miss "
-                 "the cube), %zu mismatches, %llu cycles, max %llu in flight\n",
-                 build_name().c_str(), n, what.c_str(), packed.size(), l.clipped, n - packed.size(), mismatches,
-                 static_cast<unsigned long long>(st.cycles), static_cast<unsigned long long>(st.max_in_flight));
+    std::string what = std::to_string(n) + " operand queries, all through the RTL";
+    if (!operands)
+        what = std::to_string(n) + " queries (" + std::to_string(packed.size()) + " through the RTL, " +
+               std::to_string(l.clipped) + " of them clipped onto the range cube; " +
+               std::to_string(n - packed.size()) + " miss the cube)";
+    std::fprintf(stderr, "check (%s): %s, %zu mismatches, %llu cycles, max %llu in flight\n", build_name().c_str(),
+                 what.c_str(), mismatches, static_cast<unsigned long long>(st.cycles),
+                 static_cast<unsigned long long>(st.max_in_flight));
     return mismatches == 0 ? 0 : 1;
 }
 
