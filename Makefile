@@ -288,10 +288,11 @@ peer: setup
 # make sim-regress  the long versions: 1M extreme + 1M transformed queries
 #                   through `fixed` at every width pair of {6,9,..,24}^2 and the
 #                   margin's boundary suites (PLUECKER_LONG=1 model_tests),
-#                   REGRESS_N extreme queries through the Verilated RTL at
+#                   REGRESS_N extreme, set-up, decision-boundary and
+#                   full-port-range queries through the Verilated RTL at
 #                   REGRESS_WIDTHS (built with ASSERT_ON in build/regress/sim;
 #                   zero mismatches against the model, zero false misses
-#                   against exact), the long cocotb stress bench (its
+#                   against exact for the float queries), the long cocotb stress bench (its
 #                   sizes scale with REGRESS_N) and the long cocotb sweeps
 #                   (PLUECKER_LONG=1: the intersector at every width pair of
 #                   its sweep in both modes, the multipliers; not yet timed
@@ -314,8 +315,8 @@ peer: setup
 #                   must catch it, after a baseline run of those tests on the
 #                   unmodified copy; prints mutant -> caught by -> time and
 #                   fails when one survives. MUTANTS=a,b runs those only.
-#                   About 40 min on 2 loaded cores (builds reused through
-#                   ccache; see the README).
+#                   16 min on 2 loaded cores with the copy's builds cached,
+#                   about 35 min on the first run (README, Verification).
 # make mutate-smoke the fast mutants (the RTL margin's +1 through the
 #                   harness's boundary check, the model's segment-end
 #                   rounding through its pinning test), in `make test`.
