@@ -154,3 +154,45 @@ TEST(Local, NeverMissesOnRaysFromAnywhere) {
 
 }  // namespace
 }  // namespace pluecker
+
+namespace pluecker {
+namespace {
+
+// The tiny and degenerate boxes of the extreme families: false hits of the
+// local datapath at K = 12 and 16 against the global datapath at 24/24,
+// per family (printed; the local test resolves each box in its own cells).
+TEST(Local, ExtremeFamiliesFalseHitsAgainstTheGlobalDatapath) {
+    std::vector<std::size_t> fam;
+    const std::vector<Query> qs = extreme_queries(404, n_queries(), &fam);
+    const std::size_t nf = extreme_family_count();
+    std::vector<Tally> global(nf), k12(nf), k16(nf);
+    const FixedFormat g = test_support::format(24, 24);
+    for (std::size_t i = 0; i < qs.size(); ++i) {
+        const bool e = exact_hit(qs[i].ray, qs[i].box);
+        global[fam[i]].add(e, fixed_hit(qs[i].ray, qs[i].box, g));
+        k12[fam[i]].add(e, local_hit(qs[i].ray, qs[i].box, lformat(12, 15, 40)));
+        k16[fam[i]].add(e, local_hit(qs[i].ray, qs[i].box, lformat(16, 19, 40)));
+    }
+    for (std::size_t f = 0; f < nf; ++f) {
+        std::printf("[ local family ] %-14s misses %6zu  false hits: global 24/24 %6zu  local K=12 %6zu  K=16 %6zu\n",
+                    extreme_family_name(f), global[f].queries - global[f].real_hits, global[f].false_hits,
+                    k12[f].false_hits, k16[f].false_hits);
+        EXPECT_EQ(k12[f].false_misses + k16[f].false_misses, 0u) << extreme_family_name(f);
+        const std::string name = extreme_family_name(f);
+        // Boxes of 1e-6 and below: a few cells of the global grid, 2^K - 1
+        // of their own frame.
+        if (name == "tiny-box") {
+            EXPECT_GT(global[f].false_hits, 0u) << "the family no longer tests what it claims";
+            EXPECT_EQ(k12[f].false_hits, 0u);
+            EXPECT_EQ(k16[f].false_hits, 0u);
+        }
+        // Flat boxes: the flat axis in cells of the global grid.
+        if (name == "flat-box") {
+            EXPECT_LT(k12[f].false_hits, global[f].false_hits);
+            EXPECT_LT(k16[f].false_hits, global[f].false_hits);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace pluecker

@@ -4,6 +4,8 @@
 #include "pluecker/contract.hpp"
 
 #include "contract_util.hpp"
+#include "grid.hpp"
+
 #include "pluecker/fixed.hpp"
 #include "pluecker/geometry.hpp"
 
@@ -15,7 +17,7 @@ namespace {
 using i64 = std::int64_t;
 using L = ContractLimits;
 
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
+using detail::axis_name;
 
 constexpr MulStyle kStyles[] = {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut};
 

@@ -15,16 +15,9 @@ namespace pluecker {
 namespace {
 
 using i64 = std::int64_t;
+using detail::axis_name;
+using detail::fmt_float;
 using detail::Round;
-
-std::string fmt_float(float v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << v;
-    return s.str();
-}
-
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
 }  // namespace
 

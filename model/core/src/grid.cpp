@@ -10,7 +10,8 @@
 #include <string>
 
 namespace pluecker::detail {
-namespace {
+
+const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
 std::string fmt_float(float v) {
     std::ostringstream s;
@@ -18,6 +19,8 @@ std::string fmt_float(float v) {
     s << v;
     return s.str();
 }
+
+namespace {
 
 // Float as integer mantissa * 2^exp, mantissa < 2^24 (exact for every
 // finite float, denormals included).
@@ -91,10 +94,9 @@ i64 scaled_direction(float x, float m, int bits) {
 }
 
 void check_ray(const Ray& r) {
-    static const char* axis[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a)
         if (!std::isfinite(r.o[a]))
-            throw InputError(std::string("ray origin ") + axis[a] + " = " + fmt_float(r.o[a]) + " is not finite");
+            throw InputError(std::string("ray origin ") + axis_name(a) + " = " + fmt_float(r.o[a]) + " is not finite");
     const float m = std::max({std::fabs(r.d.x), std::fabs(r.d.y), std::fabs(r.d.z)});
     if (!(m > 0.0f) || !std::isfinite(m))
         throw InputError("ray direction (" + fmt_float(r.d.x) + ", " + fmt_float(r.d.y) + ", " + fmt_float(r.d.z) +

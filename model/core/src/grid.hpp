@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 namespace pluecker::detail {
 
@@ -48,6 +49,10 @@ inline void two_sum(double a, double b, double& s, double& err) {
     const double bb = s - a;
     err = (a - (s - bb)) + (b - bb);
 }
+
+// "x", "y" or "z"; a float as error messages print it (9 digits).
+const char* axis_name(int a);
+std::string fmt_float(float v);
 
 enum class Round { Down, Up, Nearest };
 

@@ -15,16 +15,11 @@ namespace {
 
 using i64 = std::int64_t;
 __extension__ typedef __int128 i128;  // a GCC/Clang extension
+using detail::axis_name;
+using detail::fmt_float;
 using detail::Round;
 
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
 
-std::string fmt_float(float v) {
-    std::ostringstream s;
-    s.precision(9);
-    s << v;
-    return s.str();
-}
 
 // x * 2^-e for an integer x, |x| < 2^110 (every value here), exactly
 // (e <= 0), or rounded up or to nearest with ties to even (e > 0;

@@ -23,9 +23,15 @@ LocalBvh build_local_bvh(std::span<const BvhNode> nodes, const LocalFormat& f, c
     q.parent.assign(nodes.size(), LocalBvh::kNoParent);
     q.root_frame = local_frame_for(nodes[0].box, f, o.uniform);
     q.boxes[0] = local_quantize_box(nodes[0].box, q.root_frame, f);
+    // A node's own frame holds its float box: it is derived from the box
+    // rounded outward in the frame it is tested in, in both modes (a box
+    // rounded to nearest may start below its float lo).
+    LocalFormat outward = f;
+    outward.mode = FixedMode::Conservative;
     auto own_frame = [&](std::uint32_t n, const LocalFrame& test) {
-        return o.parent_origin ? local_child_frame(nodes[n].box, test, q.boxes[n], f, o.uniform)
-                               : local_frame_for(nodes[n].box, f, o.uniform);
+        return o.parent_origin
+                   ? local_child_frame(nodes[n].box, test, local_quantize_box(nodes[n].box, test, outward), f, o.uniform)
+                   : local_frame_for(nodes[n].box, f, o.uniform);
     };
     q.frames[0] = own_frame(0, q.root_frame);
     std::vector<std::uint32_t> stack{0};

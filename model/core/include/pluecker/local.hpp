@@ -251,7 +251,8 @@ LocalBox local_quantize_box(const Box& b, const LocalFrame& fr, const LocalForma
 LocalFrame local_frame_for(const Box& b, const LocalFormat& f, bool uniform = false);
 
 // The frame of a child node, from its parent's frame and the child's box
-// there (`qchild`, local_quantize_box of `child` in `parent`): the origin
+// there (`qchild`, local_quantize_box of `child` in `parent`, rounded outward
+// whatever the mode, so that the child fits its own frame): the origin
 // is the child's quantised lo corner in the parent's grid, exactly F_i +
 // LO_i 2^e_i (so a node stores no origin, only its exponents), and per
 // axis the smallest exponent e <= the parent's with which the child's float
