@@ -144,6 +144,53 @@ sim-boundary: sim
 	@q=$(SIM_DIR)/boundary.txt; $(SIM_BIN) gen --n $(SIM_BOUNDARY_N) --kind boundary --out $$q && \
 	$(SIM_BIN) query --check $$q > $(SIM_DIR)/boundary.answers
 
+# ---- The local unit's harness (sim/local/) -----------------------------------
+# make sim-local         builds build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>]/pluecker_sim_local
+# make sim-local-query   LOCAL_QUERIES (default: 20000 generated, mixed and boundary) through the
+#                        local unit's RTL, each box in its tight frame, --check
+# make sim-local-render  hardware-in-the-loop render of SCENE at SIM_SIZE, compared byte for byte
+#                        with `pluecker render --test local` (fails loudly when they differ)
+# make sim-local-bench   its throughput (queries per second)
+# Variables: BOX_BITS, LOCAL_DIR_BITS (default BOX_BITS + 3), GRID_BITS, CHILDREN,
+# LOCAL_MUL_STYLE (auto|dsp|lut), MODE, SIM_TAG_BITS.
+BOX_BITS        ?= 8
+LOCAL_DIR_BITS  ?= $(shell b=$(BOX_BITS); echo $$(( b + 3 > 24 ? 24 : b + 3 )))
+GRID_BITS       ?= 32
+CHILDREN        ?= 1
+LOCAL_MUL_STYLE ?= auto
+LOCAL_SIM_DIR    = build/sim/local_k$(BOX_BITS)_d$(LOCAL_DIR_BITS)_g$(GRID_BITS)_c$(CHILDREN)$(if $(filter nearest,$(MODE)),_nearest)$(if $(filter-out auto,$(LOCAL_MUL_STYLE)),_$(LOCAL_MUL_STYLE))
+LOCAL_SIM_BIN    = $(LOCAL_SIM_DIR)/pluecker_sim_local
+LOCAL_SIM_VARS   = SIM_UNIT=local BOX_BITS=$(BOX_BITS) DIR_BITS=$(LOCAL_DIR_BITS) GRID_BITS=$(GRID_BITS) \
+                   CHILDREN=$(CHILDREN) MUL_STYLE=$(LOCAL_MUL_STYLE) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
+                   MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) SIM_OUT=$(LOCAL_SIM_DIR)
+LOCAL_OUT        = $(OUT)/$(SCENE)_$(notdir $(LOCAL_SIM_DIR))
+
+.PHONY: sim-local sim-local-query sim-local-render sim-local-bench
+
+sim-local: build
+	@$(LOCAL_SIM_VARS) $(ENV) sim/build.sh
+
+sim-local-query: sim-local
+	@if [ -n "$(LOCAL_QUERIES)" ]; then q="$(LOCAL_QUERIES)"; else \
+	  q=$(LOCAL_SIM_DIR)/queries.txt; $(LOCAL_SIM_BIN) gen --n 10000 --kind mixed --out $$q.mixed && \
+	  $(LOCAL_SIM_BIN) gen --n 10000 --kind boundary --out $$q.boundary && cat $$q.mixed $$q.boundary > $$q; fi; \
+	$(LOCAL_SIM_BIN) query --check $$q > $(LOCAL_SIM_DIR)/answers.txt && \
+	  echo "sim-local-query: answers in $(LOCAL_SIM_DIR)/answers.txt"
+
+sim-local-render: sim-local
+	@mkdir -p $(OUT)
+	$(LOCAL_SIM_BIN) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet \
+	  --out $(LOCAL_OUT)_rtl.png --stats $(LOCAL_OUT)_rtl.json
+	$(CLI) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet --test local --box-bits $(BOX_BITS) \
+	  --dir-bits $(LOCAL_DIR_BITS) --grid-bits $(GRID_BITS) --mode $(MODE) \
+	  --out $(LOCAL_OUT)_model.png --stats $(LOCAL_OUT)_model.json
+	@if cmp $(LOCAL_OUT)_model.png $(LOCAL_OUT)_rtl.png; then \
+	  echo "sim-local-render: PASS: the RTL render is bit-identical to the model's ($(LOCAL_OUT)_rtl.png)"; \
+	else echo "sim-local-render: FAIL: $(LOCAL_OUT)_rtl.png differs from $(LOCAL_OUT)_model.png" >&2; exit 1; fi
+
+sim-local-bench: sim-local
+	$(LOCAL_SIM_BIN) bench --n $(SIM_N)
+
 # ---- FPGA flow: ECP5 LFE5U-85F synthesis and place-and-route ---------------
 # (scripts/synth.py, fpga/). Results per width pair in
 # out/synth/<C>x<D>/summary.json. Extra flags: SYNTH_FLAGS=--no-pnr etc.
@@ -162,6 +209,19 @@ synth: setup
 # synthesises, places and routes (out/synth-smoke/).
 synth-smoke: setup
 	$(ENV) python scripts/synth.py --smoke --freq $(FREQ) $(SYNTH_FLAGS)
+
+# The local unit (out/synth/local_k<K>_d<D>_g<G>_c<C>[_<style>]/summary.json;
+# SYNTH_LOCAL_PART=child: its child datapath alone). LOCAL_WIDTHS (KxDxG
+# list) overrides BOX_BITS/LOCAL_DIR_BITS/GRID_BITS.
+LOCAL_WIDTHS     ?= $(BOX_BITS)x$(LOCAL_DIR_BITS)x$(GRID_BITS)
+SYNTH_LOCAL_PART ?= unit
+
+.PHONY: synth-local
+
+synth-local: setup
+	$(ENV) python scripts/synth.py --local --local-widths $(LOCAL_WIDTHS) --children $(CHILDREN) \
+	  --mul-style $(LOCAL_MUL_STYLE) --part $(SYNTH_LOCAL_PART) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
+	  --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 
 # ---- Hostile input: fuzzing, sanitizers, the hostile-input table ------------
 # (scripts/fuzz.sh, model/fuzz/,
@@ -301,6 +361,11 @@ peer: setup
 #                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
 #                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
 #                   end-to-end check (13 min loaded, builds included).
+#                   The local unit: 2.5 REGRESS_LOCAL_N queries (extreme,
+#                   set-up, boundary, random) through its RTL at each of
+#                   REGRESS_LOCAL_CONFIGS (KxDxG, c CHILDREN, n nearest), 10^7
+#                   at the defaults, 0 mismatches and 0 false misses
+#                   against exact; the local benches' long sweeps.
 # make formal       SymbiYosys (YoWASP) + z3: unbounded proof (1-step
 #                   k-induction) of the handshake and flow-control properties
 #                   at 6/6, 6/6 PIPELINE=1, 6/18 and 18/18 (S2x stages 0, 1,
@@ -324,6 +389,8 @@ peer: setup
 #                   rounding through its pinning test), in `make test`.
 REGRESS_N      ?= 1000000
 REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
+REGRESS_LOCAL_N ?= 1000000
+REGRESS_LOCAL_CONFIGS ?= 8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1
 
 MUTANTS        ?=
 
@@ -331,6 +398,7 @@ MUTANTS        ?=
 
 sim-regress: build
 	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
+	  REGRESS_LOCAL_N=$(REGRESS_LOCAL_N) REGRESS_LOCAL_CONFIGS="$(REGRESS_LOCAL_CONFIGS)" \
 	  $(ENV) scripts/regress.sh
 
 formal: setup
