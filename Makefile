@@ -22,7 +22,8 @@ MAIN_RTL          = $(OUT)/$(SCENE)_rtl_$(COORD_BITS)x$(DIR_BITS)$(if $(filter n
 MAIN_SWEEP_SIZE   ?= 64
 MAIN_SWEEP_WIDTHS ?= 8:24:4
 
-# PLAN=FILE includes a plan file written by `make plan` (COORD_BITS := ..),
+# PLAN=FILE includes a plan file written by `make plan` (COORD_BITS := ..,
+# or UNIT := local, BOX_BITS := .. when the plan chose the local unit),
 # e.g. `make synth PLAN=out/plan.mk`; widths given on the command line
 # still win. Its values reach every recipe expanded at run time.
 ifdef PLAN
@@ -201,9 +202,17 @@ SYNTH_FLAGS ?=
 
 .PHONY: synth synth-smoke
 
+# UNIT=local (as a plan file choosing the local unit sets it) runs
+# synth-local instead.
+UNIT        ?= fixed
+
 synth: setup
+ifeq ($(UNIT),local)
+	@$(MAKE) --no-print-directory synth-local
+else
 	$(ENV) python scripts/synth.py --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
 	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+endif
 
 # Default widths, one seed, speed grade 8: a quick check that the RTL still
 # synthesises, places and routes (out/synth-smoke/).
@@ -267,6 +276,9 @@ hostile-table: build
 #               REPORT_RTL_WIDTHS: widths of the RTL vs model check.
 # make plan     the narrowest widths whose extra box tests on SCENE stay within
 #               MAX_EXTRA_WORK percent; writes PLAN_OUT (make variables).
+#               PLAN_LOCAL=A:B (box widths K) also plans the local unit and
+#               chooses the one with more effective box tests per second
+#               per chip (both synthesised; else the global one, said so).
 REPORT_WIDTHS     ?= 6:24:2
 REPORT_SIZE       ?= 128
 REPORT_SYNTH      ?= 0
@@ -277,6 +289,7 @@ MAX_EXTRA_WORK    ?= 1
 PLAN_WIDTHS       ?= 6:24
 PLAN_SIZE         ?= 128
 PLAN_OUT          ?= $(OUT)/plan.mk
+PLAN_LOCAL        ?=
 
 .PHONY: report plan
 
@@ -288,7 +301,7 @@ report: build
 plan: build
 	@mkdir -p $(dir $(PLAN_OUT))
 	$(CLI) plan --scene $(SCENE) --max-extra-work $(MAX_EXTRA_WORK) --widths $(PLAN_WIDTHS) \
-	  --size $(PLAN_SIZE) --out $(PLAN_OUT)
+	  --size $(PLAN_SIZE) --out $(PLAN_OUT) $(if $(PLAN_LOCAL),--local $(PLAN_LOCAL) --children $(CHILDREN))
 
 # ---- Report tables and Embree peer ------------------------------------------
 # make tables   the four tables of Mahovsky's 2005 report (box test, child

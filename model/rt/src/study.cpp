@@ -653,4 +653,31 @@ PlanResult plan_widths(const Mesh& mesh, const Bvh& bvh, const RenderOptions& op
     return res;
 }
 
+LocalPlanResult plan_local(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
+                           const std::vector<LocalSpec>& specs, double max_extra_percent,
+                           const std::function<void(const LocalPlanStep&)>& on_step) {
+    check_max_extra_work(max_extra_percent);
+    if (specs.empty()) throw InputError("--local: no box width given");
+    LocalPlanResult res;
+    for (const LocalSpec& sp : specs)
+        if (sp.format.grid_bits != specs.front().format.grid_bits)
+            throw InputError("local frames: every configuration of a plan needs the same --grid-bits");
+    // The reference's answers are exact; the first spec drives its traversal.
+    res.reference = run_local_reference(mesh, bvh, opts, {specs.front()}).figures;
+    for (const LocalSpec& sp : specs) {
+        LocalPlanStep s;
+        s.spec = sp;
+        s.work = run_local(mesh, bvh, opts, sp, FixedMode::Conservative, nullptr).figures;
+        s.extra_box_tests_percent =
+            extra_percent(s.work.stats.traversal.box_tests, res.reference.stats.traversal.box_tests);
+        res.steps.push_back(s);
+        if (on_step) on_step(s);
+        if (s.extra_box_tests_percent <= max_extra_percent) {
+            res.chosen = res.steps.size() - 1;
+            break;
+        }
+    }
+    return res;
+}
+
 }  // namespace pluecker
