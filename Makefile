@@ -273,7 +273,9 @@ hostile-table: build
 #               ../shared/scenes/* when present) over REPORT_WIDTHS at
 #               REPORT_SIZE: out/report/report.html + report.json.
 #               REPORT_SYNTH=1 runs `make synth` for widths not measured yet;
-#               REPORT_RTL_WIDTHS: widths of the RTL vs model check.
+#               REPORT_RTL_WIDTHS: widths of the RTL vs model check;
+#               REPORT_LOCAL: local-frame box widths K beside them (study
+#               --local; the local unit's hardware from make synth-local).
 # make plan     the narrowest widths whose extra box tests on SCENE stay within
 #               MAX_EXTRA_WORK percent; writes PLAN_OUT (make variables).
 #               PLAN_LOCAL=A:B (box widths K) also plans the local unit and
@@ -285,6 +287,7 @@ REPORT_SYNTH      ?= 0
 REPORT_SCENES     ?= auto
 REPORT_RTL_WIDTHS ?= 8 16 24
 REPORT_RTL_SIZE   ?= 48
+REPORT_LOCAL      ?= 8:12:2
 MAX_EXTRA_WORK    ?= 1
 PLAN_WIDTHS       ?= 6:24
 PLAN_SIZE         ?= 128
@@ -296,7 +299,7 @@ PLAN_LOCAL        ?=
 report: build
 	$(ENV) python scripts/report.py --cli $(CLI) --size $(REPORT_SIZE) --widths $(REPORT_WIDTHS) \
 	  --scenes $(REPORT_SCENES) --synth $(REPORT_SYNTH) --rtl-widths "$(REPORT_RTL_WIDTHS)" \
-	  --rtl-size $(REPORT_RTL_SIZE) --jobs $(JOBS) --out $(OUT)/report
+	  --rtl-size $(REPORT_RTL_SIZE) --local "$(REPORT_LOCAL)" --jobs $(JOBS) --out $(OUT)/report
 
 plan: build
 	@mkdir -p $(dir $(PLAN_OUT))
