@@ -73,7 +73,7 @@ if cocotb is not None:
 
     @cocotb.test()
     @cocotb.parametrize(
-        source=["random", "extreme", "setup", "raw", "trace"],
+        source=["random", "extreme", "setup", "raw", "edge", "trace"],
         idle=[False, True],
         backpressure=[False, True],
     )

@@ -291,6 +291,60 @@ def trace_stimulus(fmt: pp.LocalFormat, children: int, seed: int, n: int) -> lis
     return out
 
 
+def _edge_box(rng: random.Random, fmt: pp.LocalFormat, node, k: int) -> pp.LocalBox | None:
+    """A box whose edge test k (pair i, j) sits on its decision boundary:
+    2 (ext_j DIR_i - ent_i DIR_j) + ext_j + ent_i + W_k (conservative) in
+    {-1, 0}, so that a W or margin off by one flips the answer. None when no
+    plane pair in 0..2^K - 1 gets there."""
+    i, j = k // 2, (k // 2 + 1 + k % 2) % 3  # local.hpp's pair order
+    top = fmt.box_max()
+    cons = fmt.mode == pp.FixedMode.Conservative
+    d_i, d_j, w = node.dir[i], node.dir[j], node.w[k]
+    a = (1 if cons else 0) - 2 * d_j  # V as a function of ent_i: a ent_i + b
+    for ext_j in rng.sample(range(top + 1), min(top + 1, 64)):
+        b = 2 * ext_j * d_i + (ext_j if cons else 0) + w
+        for v in (rng.choice((-1, 0, 0)), -1, 0):
+            if a != 0 and (v - b) % a == 0 and 0 <= (v - b) // a <= top:
+                ent_i = (v - b) // a
+                # Every other plane as far out as it goes, so that the other
+                # tests pass as often as they can: axis i's exit and axis
+                # j's entry at the frame's far and near ends, the third
+                # axis the whole frame.
+                lo, hi = [0, 0, 0], [top, top, top]
+                if (node.cls >> i) & 1:  # ent_i = ~HI_i
+                    hi[i] = top - ent_i
+                else:
+                    lo[i] = ent_i
+                if (node.cls >> j) & 1:  # ext_j = ~LO_j
+                    lo[j] = top - ext_j
+                else:
+                    hi[j] = ext_j
+                return pp.LocalBox(lo, hi)
+    return None
+
+
+def edge_stimulus(fmt: pp.LocalFormat, children: int, seed: int, n: int) -> list[LocalQuery]:
+    """Raw rays and frames (origins near the frame) whose boxes put one edge
+    test exactly on its decision boundary (_edge_box), found from the
+    model's node ray (local_node_ray): the operands where a W, a margin or
+    a comparison off by one shows."""
+    rng = random.Random(seed)
+    out: list[LocalQuery] = []
+    for q in raw_stimulus(fmt, children, seed, 4 * n):
+        if len(out) == n:
+            break
+        if q.ray.has_end:  # the end test would decide too often
+            q = LocalQuery(pp.LocalRay(q.ray.cls, q.ray.org, q.ray.dir_g, q.ray.end, False), q.frame, q.boxes,
+                           q.what)
+        node = pp.local_node_ray(q.ray, q.frame, fmt)
+        if any(o > fmt.box_max() for o in node.org):  # past every exit plane: the origin test decides
+            continue
+        boxes = [_edge_box(rng, fmt, node, rng.randrange(6)) for _ in range(children)]
+        if all(b is not None for b in boxes):
+            out.append(LocalQuery(q.ray, q.frame, boxes, q.what))
+    return out
+
+
 def make_queries(source: str, fmt: pp.LocalFormat, children: int, seed: int,
                  n: int) -> tuple[list[LocalQuery], int, str]:
     """(queries, skipped, origin) of a stimulus source."""
@@ -311,6 +365,8 @@ def make_queries(source: str, fmt: pp.LocalFormat, children: int, seed: int,
         return raw_stimulus(fmt, children, seed, n), 0, f"raw operands (seed={seed}, n={n})"
     if source == "trace":
         return trace_stimulus(fmt, children, seed, n), 0, f"teapot trace (seed={seed})"
+    if source == "edge":
+        return edge_stimulus(fmt, children, seed, n), 0, f"edge tests on their boundary (seed={seed}, n={n})"
     raise ValueError(f"unknown stimulus source {source!r}")
 
 
