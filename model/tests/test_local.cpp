@@ -14,6 +14,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -204,6 +206,49 @@ TEST(Local, MomentRoundsToNearest) {
         }
     }
     EXPECT_GT(inexact, 50000) << "too few moments between steps to tell the roundings apart";
+}
+
+// Exhaustive over a constrained domain at the smallest widths (K = 4, G = 8:
+// grid LSB 1/64, boxes up to 38 cells, so frames with exponents 0 to 2):
+// every box with planes in {-s, 0, s} per axis (s = 0.3, off the grid), every
+// origin with coordinates in a set of points around it, every direction with
+// components in {-1, -1/3, 0, 1/4, 1} (not all zero), unbounded and with a
+// finite segment; each box in its tightest frame. PLUECKER_LONG=1 adds D = 7
+// and G = 6.
+TEST(Local, ExhaustiveAtTheSmallestWidthsConstrainedDomain) {
+    const float s = 0.3f;
+    const float planes[] = {-s, 0.0f, s};
+    const float coords[] = {-2.5f * s, -1.0f * s, -0.53f * s, 0.0f, 0.47f * s, 1.0f * s, 1.99f * s};
+    const float dirs[] = {-1.0f, -1.0f / 3.0f, 0.0f, 0.25f, 1.0f};
+    const float tmaxes[] = {std::numeric_limits<float>::infinity(), 0.06f * s * 16.0f};
+    const std::vector<Box> boxes = test_support::lattice_boxes(planes);
+    std::vector<LocalFormat> fs = {lformat(4, 4, 8)};
+    if (long_run()) fs.insert(fs.end(), {lformat(4, 7, 8), lformat(4, 4, 6)});
+    for (const LocalFormat& f : fs) {
+        std::vector<LocalFrame> frames;
+        std::vector<LocalBox> qboxes;
+        for (const Box& b : boxes) {
+            frames.push_back(local_frame_for(b, f));
+            qboxes.push_back(local_quantize_box(b, frames.back(), f));
+        }
+        Tally t;
+        test_support::for_each_lattice_ray(coords, dirs, tmaxes, [&](const Ray& r) {
+            const std::optional<LocalRay> lr = local_setup_ray(r, f);
+            for (std::size_t k = 0; k < boxes.size(); ++k) {
+                const bool e = exact_hit(r, boxes[k]);
+                const bool h = lr && local_hit(local_node_ray(*lr, frames[k], f), qboxes[k], f);
+                t.add(e, h);
+                if (e && !h) ADD_FAILURE() << "false miss: K " << f.box_bits << " D " << f.dir_bits << " G "
+                                           << f.grid_bits << ", box " << k;
+            }
+        });
+        std::printf("[ local exhaustive K %d D %d G %d ] %zu queries, %zu real hits, false misses %zu, false hits "
+                    "%zu (%.2f%% of misses)\n",
+                    f.box_bits, f.dir_bits, f.grid_bits, t.queries, t.real_hits, t.false_misses, t.false_hits,
+                    100.0 * t.false_hit_rate());
+        EXPECT_EQ(t.false_misses, 0u);
+        EXPECT_GT(t.real_hits, 100000u);
+    }
 }
 
 TEST(Local, BoxOutsideItsFrameOrTheRangeIsRefused) {
