@@ -1,155 +1,43 @@
 # SPDX-License-Identifier: MIT
-"""IntersectorBench: clock and reset, driver, sink and in-order scoreboard
-around rtl/pluecker_intersector.sv (cocotb side), and its stimulus.
+"""IntersectorBench: the stream bench (pluecker_tb.stream_bench) around
+rtl/pluecker_intersector.sv (cocotb side), and its stimulus.
 
 Widths, tag width and mode are read back from the DUT's parameters. Every
 expected answer comes from the golden model (pluecker_py, through
-pluecker_tb.vectors); nothing here computes a box test. Results are matched
-by order and tag; nothing assumes the pipeline latency.
-
-Checked every cycle: each result leaves once, in order, with its query's
-tag and the model's answer; nothing accepted before a reset leaves after it
-(the scoreboard forgets every query at a reset edge; a later result with no
-query outstanding, or with another tag, is an error naming the reset);
-in_ready_o and out_valid_o are low from the second reset cycle on, and
-out_valid_o in the first cycle after a reset.
+pluecker_tb.vectors); nothing here computes a box test.
 """
 
 from __future__ import annotations
 
 import os
-import random
 from pathlib import Path
 
-import cocotb
-
-from . import clock_reset, config, traffic
-from .stream import InOrderScoreboard, StreamDriver, StreamSink, drain
+from . import config
+from .stream_bench import StreamBench
 
 TOPLEVEL = "pluecker_intersector"
-PAYLOAD = ("ray_class_i", "ray_org_i", "ray_dir_i", "ray_end_i", "ray_end_valid_i", "box_min_i", "box_max_i")
 
 
-class IntersectorBench:
-    """One DUT: idle and ready generators by default those of `idle` and
-    `backpressure` (traffic.IdleGaps, traffic.Backpressure); a bench with
-    its own traffic passes `traffic_gen` (both at once, e.g. traffic.Phases)."""
+class IntersectorBench(StreamBench):
+    """The bench of rtl/pluecker_intersector.sv (StreamBench with its
+    payload ports); widths, tag width and mode are read back from the DUT's
+    parameters."""
 
     def __init__(self, dut, seed: int, idle: bool = False, backpressure: bool = False, traffic_gen=None):
         from . import vectors as pv
 
-        self.dut = dut
         self.coord_bits = int(dut.COORD_BITS.value)
         self.dir_bits = int(dut.DIR_BITS.value)
-        self.tag_bits = int(dut.TAG_BITS.value)
         self.conservative = bool(int(dut.CONSERVATIVE.value))
         self.fmt = pv.fixed_format(self.coord_bits, self.dir_bits, self.conservative)
-        self.seed = seed
-        self.rng = random.Random(seed)  # payload junk
-        if traffic_gen is not None:
-            self.idle_gen = self.ready_gen = traffic_gen
-        else:
-            self.idle_gen = traffic.idle_generator(random.Random(seed + 1), idle)
-            self.ready_gen = traffic.ready_generator(random.Random(seed + 2), backpressure)
-        self.next_tag = 0
-        self.hits = 0
-        self.scoreboard = InOrderScoreboard(dut._log, self._compare)
-        self.edge_counter: clock_reset.EdgeCounter | None = None
-        try:  # a localparam: not in a flattened netlist (the stress bench's Icarus run)
-            latency = str(int(dut.LATENCY.value))
-        except AttributeError:
-            latency = "?"
+        c3, d3 = 3 * self.coord_bits, 3 * self.dir_bits
+        payload = {"ray_class_i": 3, "ray_org_i": c3, "ray_dir_i": d3, "ray_end_i": c3, "ray_end_valid_i": 1,
+                   "box_min_i": c3, "box_max_i": c3}
+        super().__init__(dut, seed, payload, idle, backpressure, traffic_gen)
         dut._log.info(
             "DUT COORD_BITS=%d DIR_BITS=%d TAG_BITS=%d CONSERVATIVE=%d LATENCY=%s, seed %d, idle=%s backpressure=%s",
-            self.coord_bits, self.dir_bits, self.tag_bits, self.conservative, latency, seed, idle, backpressure)
-
-    # -- the scoreboard's figures, as the tests read them ------------------------
-    accepted = property(lambda self: self.scoreboard.accepted)
-    compared = property(lambda self: self.scoreboard.compared)
-    dropped = property(lambda self: self.scoreboard.dropped)
-    latencies = property(lambda self: self.scoreboard.latencies)
-    in_edges = property(lambda self: self.scoreboard.in_edges)
-    out_edges = property(lambda self: self.scoreboard.out_edges)
-    errors = property(lambda self: self.scoreboard.errors)
-    expected = property(lambda self: self.scoreboard.expected)
-    edges = property(lambda self: self.edge_counter.edges if self.edge_counter else 0)
-
-    @property
-    def ready_override(self) -> int | None:
-        """out_ready_i forced to this value when set (None: the generator's)."""
-        return self.ready_gen.override
-
-    @ready_override.setter
-    def ready_override(self, value: int | None) -> None:
-        self.ready_gen.override = value
-
-    # -- set-up ---------------------------------------------------------------------
-    async def start(self) -> None:
-        dut = self.dut
-        dut.in_valid_i.value = 0
-        dut.out_ready_i.value = 0
-        self._junk()
-        self.edge_counter = await clock_reset.start(dut.clk_i, dut.rst_i, 3)
-        self.driver = StreamDriver(dut.clk_i, dut.in_valid_i, dut.in_ready_o, dut.rst_i, self.edge_counter,
-                                   self.idle_gen, self._apply, self._junk, self._accepted)
-        self.sink = StreamSink(dut.clk_i, dut.out_valid_o, dut.out_ready_i, dut.rst_i, self.edge_counter,
-                               self.ready_gen, self._transfer, self.scoreboard.error,
-                               on_reset_edge=self.scoreboard.drop_all, quiet=[dut.out_valid_o, dut.in_ready_o])
-        self.sink_task = cocotb.start_soon(self.sink.run())
-
-    def _junk(self) -> None:
-        """Random payload while in_valid_i is low: the DUT must ignore it."""
-        dut, c3, d3 = self.dut, 3 * self.coord_bits, 3 * self.dir_bits
-        dut.in_tag_i.value = self.rng.getrandbits(self.tag_bits)
-        dut.ray_class_i.value = self.rng.getrandbits(3)
-        dut.ray_org_i.value = self.rng.getrandbits(c3)
-        dut.ray_dir_i.value = self.rng.getrandbits(d3)
-        dut.ray_end_i.value = self.rng.getrandbits(c3)
-        dut.ray_end_valid_i.value = self.rng.getrandbits(1)
-        dut.box_min_i.value = self.rng.getrandbits(c3)
-        dut.box_max_i.value = self.rng.getrandbits(c3)
-
-    def _apply(self, item) -> None:
-        tag, vec = item
-        for name, value in vec.ports.items():
-            getattr(self.dut, name).value = value
-        self.dut.in_tag_i.value = tag
-
-    def _accepted(self, item, edge: int) -> None:
-        self.scoreboard.push(item[0], item[1], edge)
-
-    def _transfer(self, edge: int) -> None:
-        self.scoreboard.check(int(self.dut.out_tag_o.value), int(self.dut.out_hit_o.value), edge)
-
-    def _compare(self, vec, hit: int) -> str | None:
-        self.hits += int(vec.hit)
-        if hit != int(vec.hit):
-            return f"RTL hit={hit}, model hit={int(vec.hit)} for {vec.describe()}"
-        return None
-
-    def _error(self, msg: str) -> None:
-        self.scoreboard.error(msg)
-
-    # -- traffic ------------------------------------------------------------------------
-    async def drive(self, vectors) -> None:
-        """Offers every vector once, with consecutive tags; returns when the
-        last one is taken."""
-        items = []
-        for v in vectors:
-            items.append((self.next_tag, v))
-            self.next_tag = (self.next_tag + 1) % (1 << self.tag_bits)
-        await self.driver.send(items)
-
-    async def drain(self, limit: int = 5000) -> None:
-        """Waits until every accepted query has come out (or was reset away)."""
-        self.ready_override = None
-        await drain(self.dut.clk_i, self.scoreboard, limit)
-
-    def finish(self, what: str) -> None:
-        self.scoreboard.assert_clean()
-        self.dut._log.info(
-            "%s: %d results compared (%d hits), %d dropped by reset, %d cycles, latency histogram %s",
-            what, self.compared, self.hits, self.dropped, self.edges, self.scoreboard.histogram())
+            self.coord_bits, self.dir_bits, self.tag_bits, self.conservative, self.latency_text(), seed, idle,
+            backpressure)
 
 
 def stimulus(bench: IntersectorBench, source: str, n: int, salt: object) -> list:
