@@ -9,16 +9,16 @@
 package pluecker_contract_float_pkg;
   localparam int MIN_TAG_BITS = 1;
   // Latencies of pluecker_f32_add and pluecker_f32_mul.
-  localparam int ADD_LATENCY = 6;
-  localparam int MUL_LATENCY = 6;
+  localparam int ADD_LATENCY = 8;
+  localparam int MUL_LATENCY = 7;
   // MULT18X18D per significand product when MUL_DSP is not given.
   localparam int DEFAULT_MUL_DSP = 4;
   // pluecker_float_intersector
-  localparam int FLOAT_LATENCY = 15;
+  localparam int FLOAT_LATENCY = 18;
   localparam int FLOAT_FIFO_DEPTH = 32;
   localparam int FLOAT_MULTIPLIERS = 12;
   // pluecker_smits_intersector
-  localparam int SMITS_LATENCY = 17;
+  localparam int SMITS_LATENCY = 20;
   localparam int SMITS_FIFO_DEPTH = 32;
   localparam int SMITS_MULTIPLIERS = 6;
 

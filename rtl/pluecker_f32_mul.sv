@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Pipelined binary32 multiplier: p_o = a_i * b_i rounded by ROUND (0
-// nearest even, 1 up, 2 down), LATENCY = 6 clock edges after a_i, b_i; one
+// nearest even, 1 up, 2 down), LATENCY = 7 clock edges after a_i, b_i; one
 // operation per clock. Bit for bit f32::mul of
 // model/core/include/pluecker/f32unit.hpp: a subnormal operand is read as
 // zero of its sign, or under directed rounding as 2^-126 of its sign when
@@ -15,7 +15,7 @@
 //         sign, exponent sum and special cases wait beside it
 //   5     normalise: the product of two significands in [2^23, 2^24) lies in
 //         [2^46, 2^48); 24 bits from bit 47 or 46, guard, sticky
-//   6     round and pack (pluecker_f32_round)
+//   6, 7  round and pack (pluecker_f32_round, two stages)
 `default_nettype none
 
 module pluecker_f32_mul #(
@@ -28,7 +28,7 @@ module pluecker_f32_mul #(
     output wire [31:0] p_o
 );
   localparam int MANT_LATENCY = 4;
-  localparam int LATENCY = MANT_LATENCY + 2;
+  localparam int LATENCY = MANT_LATENCY + 3;
 
   if (ROUND < 0 || ROUND > 2) begin : g_bad_round
     $error("pluecker_f32_mul: parameter ROUND must be 0 (nearest), 1 (up) or 2 (down)");
@@ -93,15 +93,10 @@ module pluecker_f32_mul #(
     spec5_q <= spec4;
   end
 
-  // Stage 6: round and pack.
-  wire [31:0] res;
+  // Stages 6, 7: round and pack.
   pluecker_f32_round #(.ROUND(ROUND)) u_round (
-      .sign_i(sign5_q), .exp_i(e5_q), .mant_i(mant5_q), .guard_i(guard5_q), .sticky_i(sticky5_q),
-      .nan_i(spec5_q[2]), .inf_i(spec5_q[1]), .zero_i(spec5_q[0]), .res_o(res));
-
-  logic [31:0] p6_q;
-  always_ff @(posedge clk_i) p6_q <= res;
-  assign p_o = p6_q;
+      .clk_i(clk_i), .sign_i(sign5_q), .exp_i(e5_q), .mant_i(mant5_q), .guard_i(guard5_q), .sticky_i(sticky5_q),
+      .nan_i(spec5_q[2]), .inf_i(spec5_q[1]), .zero_i(spec5_q[0]), .res_o(p_o));
 endmodule
 
 `default_nettype wire

@@ -41,13 +41,13 @@
 //
 // Pipeline (one query per clock, no stall; stage = register index)
 //   S0       input registers; the class picks the operands in front of them
-//   S1..S6   the six adders (ADD_LATENCY = 6); S1 also holds the origin and
+//   S1..S8   the six adders (ADD_LATENCY = 8); S1 also holds the origin and
 //            end comparisons; the magnitudes |d| wait
-//   S7..S12  the twelve multipliers (MUL_LATENCY = 6; MUL_DSP MULT18X18D
+//   S9..S15  the twelve multipliers (MUL_LATENCY = 7; MUL_DSP MULT18X18D
 //            each on ECP5: pluecker_f32_mant_mul)
-//   S13      the six edge comparisons
+//   S16      the six edge comparisons
 //   F        the AND of every test is written into the output FIFO
-// LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 2 = 15 cycles from input to
+// LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 2 = 18 cycles from input to
 // output handshake; FIFO_DEPTH = 32 (a power of two >= LATENCY + 2). Both
 // are the port contract's (model/core/include/pluecker/float_contract.hpp,
 // generated package pluecker_contract_float_pkg); elaboration fails when
@@ -83,8 +83,10 @@ module pluecker_float_intersector #(
   // -------------------------------------------------------------------------
   localparam int ADD_LATENCY = pluecker_contract_float_pkg::ADD_LATENCY;
   localparam int MUL_LATENCY = pluecker_contract_float_pkg::MUL_LATENCY;
-  // Register index of the products and of the edge comparisons.
-  localparam int S_MUL = ADD_LATENCY + MUL_LATENCY;
+  // Register index of the differences, the products and the edge
+  // comparisons.
+  localparam int S_ADD = ADD_LATENCY;
+  localparam int S_MUL = S_ADD + MUL_LATENCY;
   localparam int S_EDGE = S_MUL + 1;
   localparam int STAGES = S_EDGE + 1;
   localparam int LATENCY = STAGES + 1;
@@ -154,14 +156,14 @@ module pluecker_float_intersector #(
   end
 
   // -------------------------------------------------------------------------
-  // S1..S6: A_i, B_i; origin and end tests in S1
+  // S1..S8: A_i, B_i; origin and end tests in S1
   // -------------------------------------------------------------------------
-  logic [2:0][31:0] a6, b6;
+  logic [2:0][31:0] a_s, b_s;  // A_i, B_i at S_ADD
   logic [2:0] orig_rej, end_rej;
 
   for (genvar i = 0; i < 3; i++) begin : g_sub
-    pluecker_f32_add #(.SUB(1), .ROUND(RA)) u_a (.clk_i(clk_i), .a_i(al0_q[i]), .b_i(ar0_q[i]), .s_o(a6[i]));
-    pluecker_f32_add #(.SUB(1), .ROUND(RB)) u_b (.clk_i(clk_i), .a_i(bl0_q[i]), .b_i(br0_q[i]), .s_o(b6[i]));
+    pluecker_f32_add #(.SUB(1), .ROUND(RA)) u_a (.clk_i(clk_i), .a_i(al0_q[i]), .b_i(ar0_q[i]), .s_o(a_s[i]));
+    pluecker_f32_add #(.SUB(1), .ROUND(RB)) u_b (.clk_i(clk_i), .a_i(bl0_q[i]), .b_i(br0_q[i]), .s_o(b_s[i]));
     wire unused_le_o, unused_le_g;
     pluecker_f32_cmp u_orig (.a_i(bl0_q[i]), .b_i(br0_q[i]), .lt_o(orig_rej[i]), .le_o(unused_le_o));
     pluecker_f32_cmp u_end (.a_i(gl0_q[i]), .b_i(gr0_q[i]), .lt_o(end_rej[i]), .le_o(unused_le_g));
@@ -173,11 +175,11 @@ module pluecker_float_intersector #(
   wire ok_edge;  // ok1_q at S_EDGE
   pluecker_delay #(.W(1), .N(S_EDGE - 1)) u_ok (.clk_i(clk_i), .d_i(ok1_q), .q_o(ok_edge));
 
-  wire [2:0][31:0] d6;  // |d| at S6
-  pluecker_delay #(.W(96), .N(ADD_LATENCY)) u_dir (.clk_i(clk_i), .d_i(d0_q), .q_o(d6));
+  wire [2:0][31:0] d_s;  // |d| at S_ADD
+  pluecker_delay #(.W(96), .N(ADD_LATENCY)) u_dir (.clk_i(clk_i), .d_i(d0_q), .q_o(d_s));
 
   // -------------------------------------------------------------------------
-  // S7..S12: products B_j*D_i and A_i*D_j; S13: edge comparisons
+  // S9..S15: products B_j*D_i and A_i*D_j; S16: edge comparisons
   // -------------------------------------------------------------------------
   logic [5:0] edge_rej;
   for (genvar k = 0; k < 6; k++) begin : g_edge
@@ -185,8 +187,8 @@ module pluecker_float_intersector #(
     localparam int J = pair_j(k);
     wire [31:0] p, q;
     wire unused_le;
-    pluecker_f32_mul #(.ROUND(RB), .MUL_DSP(MUL_DSP)) u_p (.clk_i(clk_i), .a_i(b6[J]), .b_i(d6[I]), .p_o(p));
-    pluecker_f32_mul #(.ROUND(RA), .MUL_DSP(MUL_DSP)) u_q (.clk_i(clk_i), .a_i(a6[I]), .b_i(d6[J]), .p_o(q));
+    pluecker_f32_mul #(.ROUND(RB), .MUL_DSP(MUL_DSP)) u_p (.clk_i(clk_i), .a_i(b_s[J]), .b_i(d_s[I]), .p_o(p));
+    pluecker_f32_mul #(.ROUND(RA), .MUL_DSP(MUL_DSP)) u_q (.clk_i(clk_i), .a_i(a_s[I]), .b_i(d_s[J]), .p_o(q));
     pluecker_f32_cmp u_cmp (.a_i(p), .b_i(q), .lt_o(edge_rej[k]), .le_o(unused_le));
   end
 

@@ -26,11 +26,12 @@
 //
 // Pipeline (stage = register index)
 //   S0        input registers (planes chosen by the class)
-//   S1..S6    six adders; inv and tmax wait
-//   S7..S12   six multipliers (MUL_DSP MULT18X18D each on ECP5)
-//   S13..S15  the bounds, one axis a stage
+//   S1..S8    six adders (ADD_LATENCY = 8); inv and tmax wait
+//   S9..S15   six multipliers (MUL_LATENCY = 7; MUL_DSP MULT18X18D each on
+//             ECP5)
+//   S16..S18  the bounds, one axis a stage
 //   F         t0 <= t1 written into the output FIFO
-// LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 3 + 1 = 17, FIFO_DEPTH = 32:
+// LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 3 + 1 = 20, FIFO_DEPTH = 32:
 // the port contract's (pluecker_contract_float_pkg); elaboration fails when
 // they differ.
 `default_nettype none
@@ -111,33 +112,33 @@ module pluecker_smits_intersector #(
   end
 
   // -------------------------------------------------------------------------
-  // S1..S12: tn = (near - o) * inv, tf = (far - o) * inv
+  // S1..S15: tn = (near - o) * inv, tf = (far - o) * inv
   // -------------------------------------------------------------------------
-  wire [2:0][31:0] inv6;
-  pluecker_delay #(.W(96), .N(ADD_LATENCY)) u_inv (.clk_i(clk_i), .d_i(inv0_q), .q_o(inv6));
-  wire [31:0] tmax12;
-  pluecker_delay #(.W(32), .N(S_MUL)) u_tmax (.clk_i(clk_i), .d_i(tmax0_q), .q_o(tmax12));
+  wire [2:0][31:0] inv_s;
+  pluecker_delay #(.W(96), .N(ADD_LATENCY)) u_inv (.clk_i(clk_i), .d_i(inv0_q), .q_o(inv_s));
+  wire [31:0] tmax_s;
+  pluecker_delay #(.W(32), .N(S_MUL)) u_tmax (.clk_i(clk_i), .d_i(tmax0_q), .q_o(tmax_s));
 
-  wire [2:0][31:0] tn12, tf12;
+  wire [2:0][31:0] tn_s, tf_s;
   for (genvar a = 0; a < 3; a++) begin : g_slab
     wire [31:0] dn, df;
     pluecker_f32_add #(.SUB(1)) u_dn (.clk_i(clk_i), .a_i(near0_q[a]), .b_i(o0_q[a]), .s_o(dn));
     pluecker_f32_add #(.SUB(1)) u_df (.clk_i(clk_i), .a_i(far0_q[a]), .b_i(o0_q[a]), .s_o(df));
-    pluecker_f32_mul #(.MUL_DSP(MUL_DSP)) u_tn (.clk_i(clk_i), .a_i(dn), .b_i(inv6[a]), .p_o(tn12[a]));
-    pluecker_f32_mul #(.MUL_DSP(MUL_DSP)) u_tf (.clk_i(clk_i), .a_i(df), .b_i(inv6[a]), .p_o(tf12[a]));
+    pluecker_f32_mul #(.MUL_DSP(MUL_DSP)) u_tn (.clk_i(clk_i), .a_i(dn), .b_i(inv_s[a]), .p_o(tn_s[a]));
+    pluecker_f32_mul #(.MUL_DSP(MUL_DSP)) u_tf (.clk_i(clk_i), .a_i(df), .b_i(inv_s[a]), .p_o(tf_s[a]));
   end
 
   // -------------------------------------------------------------------------
-  // S13..S15: the bounds, axis a in stage S_MUL + 1 + a. The candidates of
+  // S16..S18: the bounds, axis a in stage S_MUL + 1 + a. The candidates of
   // the later axes wait.
   // -------------------------------------------------------------------------
   wire [3:0][31:0] t0, t1;  // bounds before axis a (index a), after axis 2 (index 3)
   assign t0[0] = 32'd0;  // +0
-  assign t1[0] = tmax12;
+  assign t1[0] = tmax_s;
 
   for (genvar a = 0; a < 3; a++) begin : g_bound
     wire [31:0] tn, tf;
-    pluecker_delay #(.W(64), .N(a)) u_wait (.clk_i(clk_i), .d_i({tn12[a], tf12[a]}), .q_o({tn, tf}));
+    pluecker_delay #(.W(64), .N(a)) u_wait (.clk_i(clk_i), .d_i({tn_s[a], tf_s[a]}), .q_o({tn, tf}));
     wire raise, lower, unused_le0, unused_le1;
     pluecker_f32_cmp u_raise (.a_i(t0[a]), .b_i(tn), .lt_o(raise), .le_o(unused_le0));  // tn > t0
     pluecker_f32_cmp u_lower (.a_i(tf), .b_i(t1[a]), .lt_o(lower), .le_o(unused_le1));  // tf < t1

@@ -33,12 +33,12 @@ FloatPortContract contract(FloatUnit u, int mul_dsp = FloatLimits::kDefaultMulDs
 TEST(FloatContract, LatencyFifoAndDsp) {
     const FloatPortContract p = contract(FloatUnit::Pluecker);
     EXPECT_EQ(p.latency(), 1 + FloatLimits::kAddLatency + FloatLimits::kMulLatency + 2);
-    EXPECT_EQ(p.latency(), 15);
+    EXPECT_EQ(p.latency(), 18);
     EXPECT_EQ(p.fifo_depth(), 32);
     EXPECT_EQ(p.multipliers(), 12);
     EXPECT_STREQ(p.module(), "pluecker_float_intersector");
     const FloatPortContract s = contract(FloatUnit::Smits);
-    EXPECT_EQ(s.latency(), 17);
+    EXPECT_EQ(s.latency(), 20);
     EXPECT_EQ(s.fifo_depth(), 32);
     EXPECT_EQ(s.multipliers(), 6);
     for (int m : FloatLimits::kMulDspValues) {

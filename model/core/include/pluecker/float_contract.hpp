@@ -16,11 +16,11 @@
 //                     fabric)
 //
 // Derived constants (FloatPortContract), as the RTL derives them
-//   ADD_LATENCY = 6, MUL_LATENCY = 6 (pluecker_f32_add, pluecker_f32_mul)
-//   float:  LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 2 = 15 (S0, adders,
+//   ADD_LATENCY = 8, MUL_LATENCY = 7 (pluecker_f32_add, pluecker_f32_mul)
+//   float:  LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 2 = 18 (S0, adders,
 //           multipliers, edge comparisons, FIFO write), 6 adders, 12
 //           multipliers
-//   smits:  LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 3 + 1 = 17 (S0,
+//   smits:  LATENCY = 1 + ADD_LATENCY + MUL_LATENCY + 3 + 1 = 20 (S0,
 //           adders, multipliers, three bound stages, FIFO write), 6 adders,
 //           6 multipliers
 //   FIFO_DEPTH        the smallest power of two >= LATENCY + 2
@@ -57,8 +57,8 @@ const char* float_unit_module(FloatUnit u);
 
 struct FloatLimits {
     static constexpr int kMinTagBits = 1;
-    static constexpr int kAddLatency = 6;   // pluecker_f32_add
-    static constexpr int kMulLatency = 6;   // pluecker_f32_mul
+    static constexpr int kAddLatency = 8;   // pluecker_f32_add
+    static constexpr int kMulLatency = 7;   // pluecker_f32_mul
     static constexpr int kMulDspValues[] = {1, 3, 4};
     static constexpr int kDefaultMulDsp = 4;
 };
