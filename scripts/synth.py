@@ -1,23 +1,30 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""ECP5 synthesis and place-and-route of pluecker_intersector (LFE5U-85F).
+"""ECP5 synthesis and place-and-route of a box-test unit (LFE5U-85F): the
+fixed-point pluecker_intersector (--unit fixed, the default) or a binary32
+unit (--unit float: pluecker_float_intersector; --unit smits:
+pluecker_smits_intersector).
 
-Flow per width pair (COORD_BITS x DIR_BITS):
+Flow per width pair (COORD_BITS x DIR_BITS; one run for a binary32 unit):
   1. Yosys `synth_ecp5 -json` of rtl/*.sv under the out-of-context harness
-     fpga/ooc_wrapper.sv (registered ports), plus `stat -json`.
+     fpga/ooc_wrapper.sv (fpga/ooc_float_wrapper.sv for the binary32 units;
+     registered ports), plus `stat -json`.
   2. nextpnr-ecp5 --85k --package CABGA381 --out-of-context --freq F
      for every speed grade x seed (at most 2 runs at a time), each writing
      its JSON report (--report).
   3. The reports (never the logs) give utilisation, Fmax per clock and the
      critical path; out/synth/<C>x<D>/summary.json collects them.
 LATENCY, the FIFO depth and the number of MULT18X18D come from the port
-contract (rtl/pluecker_contract.json through scripts/contract.py); the RTL
-checks at elaboration that it derives the same, and the flow fails when the
-netlist's MULT18X18D count differs from the contract's.
+contract (rtl/pluecker_contract.json, rtl/pluecker_contract_float.json
+through scripts/contract.py); the RTL checks at elaboration that it derives
+the same, and the flow fails when the netlist's MULT18X18D count differs
+from the contract's.
 
 Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary;
 --mul-style and --pipeline other than the defaults add _<style> and _p<P>
-to the directory name). `--no-pnr` stops after Yosys (utilisation only).
+to the directory name), out/synth/<unit>[_cons]_dsp<M>/summary.json for a
+binary32 unit (--mul-dsp M, --conservative 1). `--no-pnr` stops after Yosys
+(utilisation only).
 """
 from __future__ import annotations
 
@@ -38,9 +45,47 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 import contract  # noqa: E402  (scripts/contract.py: the port contract's table)
 
-WRAPPER = ROOT / "fpga" / "ooc_wrapper.sv"
-TOP = "ooc_wrapper"
-DUT = "pluecker_intersector"
+
+
+
+class Target:
+    """What one flow run synthesises: the out-of-context harness (file and
+    module), the unit inside it, the parameters and the output name."""
+
+    def __init__(self, wrapper: str, top: str, dut: str, params: dict, name: str, row: dict):
+        self.wrapper = ROOT / "fpga" / wrapper
+        self.top = top
+        self.dut = dut
+        self.params = params
+        self.name = name
+        self.row = row  # the port contract's latency, fifo_depth, mult18x18d (and more)
+
+
+def fixed_target(c: int, d: int, args) -> Target:
+    name = f"{c}x{d}" + (f"_{args.mul_style}" if args.mul_style != "auto" else "") + (
+        f"_p{args.pipeline}" if args.pipeline else "")
+    try:
+        row = contract.row(c, d, args.mul_style, args.pipeline)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
+              "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "PIPELINE": args.pipeline}
+    return Target("ooc_wrapper.sv", "ooc_wrapper", "pluecker_intersector", params, name, row)
+
+
+def float_target(args) -> Target:
+    try:
+        row = contract.float_unit(args.unit, args.mul_dsp)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    if args.conservative not in row["conservative"]:
+        raise FlowError(f"--conservative {args.conservative}: {row['module']} takes {row['conservative']}")
+    params = {"UNIT": args.unit, "TAG_BITS": args.tag_bits, "MUL_DSP": row["mul_dsp"]}
+    if args.unit == "float":
+        params["CONSERVATIVE"] = args.conservative
+    name = f"{args.unit}{'_cons' if args.conservative else ''}_dsp{row['mul_dsp']}"
+    row = dict(row, multiplier=f"{row['mul_dsp']} MULT18X18D per significand product")
+    return Target("ooc_float_wrapper.sv", "ooc_float_wrapper", row["module"], params, name, row)
 DEVICE_FLAG, DEVICE = "--85k", "LFE5U-85F"
 PACKAGE = "CABGA381"
 MAX_PARALLEL = 2  # nextpnr runs at once (2-core machine)
@@ -98,10 +143,10 @@ def tool_version(tool: str, flag: str) -> str:
 # --------------------------------------------------------------------------
 # Sources, parameters
 
-def rtl_sources(rtl_dir: Path) -> list[Path]:
+def rtl_sources(rtl_dir: Path, dut: str) -> list[Path]:
     files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")))
-    if not any(f.stem == DUT for f in files):
-        raise FlowError(f"{rtl_dir}/{DUT}.sv not found (the RTL is missing)")
+    if not any(f.stem == dut for f in files):
+        raise FlowError(f"{rtl_dir}/{dut}.sv not found (the RTL is missing)")
     return files
 
 
@@ -136,15 +181,15 @@ def yosys_value(v: int | str) -> str:
     return f'"{v}"' if isinstance(v, str) else str(v)
 
 
-def yosys_script(sources: list[Path], params: dict[str, int | str], outdir: Path) -> str:
+def yosys_script(sources: list[Path], target: Target, outdir: Path) -> str:
     """The Yosys script, run with outdir as working directory."""
-    files = " ".join(rel(s, outdir) for s in sources + [WRAPPER])
-    chparams = " ".join(f"-set {k} {yosys_value(v)}" for k, v in params.items())
+    files = " ".join(rel(s, outdir) for s in sources + [target.wrapper])
+    chparams = " ".join(f"-set {k} {yosys_value(v)}" for k, v in target.params.items())
     return "\n".join([
         "# Generated by scripts/synth.py (paths relative to this directory)",
         f"read_verilog -sv -DSYNTHESIS -DPLUECKER_ECP5 -I{rel(sources[0].parent, outdir)} {files}",
-        f"chparam {chparams} {TOP}",
-        f"synth_ecp5 -top {TOP} -json netlist.json",
+        f"chparam {chparams} {target.top}",
+        f"synth_ecp5 -top {target.top} -json netlist.json",
         "tee -q -o yosys_stat.json stat -json",
         "",
     ])
@@ -165,32 +210,33 @@ def design_sources(src: str) -> list[str]:
     return [e for e in src.split("|") if e and not e.startswith("/share/")]
 
 
-def netlist_info(netlist_path: Path) -> tuple[dict[str, str], int]:
+def netlist_info(netlist_path: Path, target: Target) -> tuple[dict[str, str], int]:
     """(cell name -> type, number of flip-flops of the harness).
 
     A flip-flop belongs to the harness when its Yosys 'src' attribute points
-    into fpga/ooc_wrapper.sv only, or when it has no source and its name is
-    not in the u_dut hierarchy."""
+    into the harness file only, or when it has no source and its name is not
+    in the u_dut hierarchy (of the wrapper, or of one of its generate
+    blocks)."""
     with open(netlist_path) as f:
         nl = json.load(f)
-    top = nl["modules"][TOP]
+    top = nl["modules"][target.top]
     types = {}
     harness_ff = 0
     for name, cell in top["cells"].items():
         types[name] = cell["type"]
         if cell["type"] == "TRELLIS_FF":
             srcs = design_sources(cell.get("attributes", {}).get("src", ""))
-            if srcs and all(WRAPPER.name in s for s in srcs):
+            if srcs and all(target.wrapper.name in s for s in srcs):
                 harness_ff += 1
-            elif not srcs and not name.startswith("u_dut."):
+            elif not srcs and not re.match(r"^(g_\w+\.)?u_dut\.", name):
                 harness_ff += 1  # e.g. output flops merged with a RAM read port
     return types, harness_ff
 
 
-def run_yosys(yosys: str, sources: list[Path], params: dict[str, int | str], outdir: Path) -> dict:
+def run_yosys(yosys: str, sources: list[Path], target: Target, outdir: Path) -> dict:
     outdir.mkdir(parents=True, exist_ok=True)
     script = outdir / "synth.ys"
-    script.write_text(yosys_script(sources, params, outdir))
+    script.write_text(yosys_script(sources, target, outdir))
     log = outdir / "yosys.log"
     t0 = time.monotonic()
     res = subprocess.run([yosys, "-q", "-l", log.name, "-s", script.name],
@@ -201,7 +247,7 @@ def run_yosys(yosys: str, sources: list[Path], params: dict[str, int | str], out
         raise FlowError(f"yosys failed (exit {res.returncode}); see {log}\n{res.stderr.strip()}\n{tail}")
     with open(outdir / "yosys_stat.json") as f:
         cells = cells_by_type(json.load(f))
-    types, harness_ff = netlist_info(outdir / "netlist.json")
+    types, harness_ff = netlist_info(outdir / "netlist.json", target)
     return {"seconds": round(seconds, 1), "cells": cells, "harness_ff": harness_ff,
             "cell_types": types}
 
@@ -210,10 +256,10 @@ def run_yosys(yosys: str, sources: list[Path], params: dict[str, int | str], out
 # nextpnr
 
 def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int,
-                freq: float) -> list[str]:
+                freq: float, top: str) -> list[str]:
     """nextpnr command line, run with rundir as working directory."""
     return [nextpnr, DEVICE_FLAG, "--package", PACKAGE, "--speed", str(speed),
-            "--seed", str(seed), "--json", rel(netlist, rundir), "--top", TOP,
+            "--seed", str(seed), "--json", rel(netlist, rundir), "--top", top,
             "--out-of-context", "--freq", f"{freq:g}", "--timing-allow-fail",
             "--report", "report.json", "-l", "nextpnr.log", "-q"]
 
@@ -359,8 +405,8 @@ def utilisation(ys: dict, pnr_runs: list[dict]) -> dict:
     return u
 
 
-def write_summary(base: Path, c: int, d: int, args, ys: dict, row: dict,
-                  runs: list[dict], tools: dict) -> dict:
+def write_summary(base: Path, target: Target, args, ys: dict, runs: list[dict], tools: dict) -> dict:
+    row = target.row
     by_speed: dict[str, dict] = {}
     limits: dict[str, dict] = {}
     for speed in args.speed_list:
@@ -370,12 +416,15 @@ def write_summary(base: Path, c: int, d: int, args, ys: dict, row: dict,
         by_speed[str(speed)] = fmax_stats([r["fmax"] for r in ok])
         worst = min(ok, key=lambda r: r["fmax"])
         limits[str(speed)] = dict(worst["critical_path"] or {}, seed=worst["seed"])
+    p = target.params
     summary = {
-        "design": DUT,
-        "harness": f"{TOP} (fpga/ooc_wrapper.sv, registered ports)",
-        "coord_bits": c, "dir_bits": d, "tag_bits": args.tag_bits,
+        "design": target.dut,
+        "unit": args.unit,
+        "name": target.name,
+        "harness": f"{target.top} (fpga/{target.wrapper.name}, registered ports)",
+        "coord_bits": p.get("COORD_BITS"), "dir_bits": p.get("DIR_BITS"), "tag_bits": args.tag_bits,
         "conservative": args.conservative,
-        "mul_style": args.mul_style, "pipeline": args.pipeline,
+        "mul_style": p.get("MUL_STYLE"), "pipeline": p.get("PIPELINE"), "mul_dsp": p.get("MUL_DSP"),
         "multiplier": row["multiplier"],
         "latency": row["latency"], "fifo_depth": row["fifo_depth"],
         "device": DEVICE, "package": PACKAGE, "out_of_context": True,
@@ -396,14 +445,14 @@ def write_summary(base: Path, c: int, d: int, args, ys: dict, row: dict,
 
 
 def print_table(summaries: list[dict], speeds: list[int]) -> None:
-    head = f"{'CxD':>6} {'LUT4':>6} {'CCU2C':>6} {'FF':>6} {'dutFF':>6} {'MULT':>5} {'lat':>4}"
+    head = f"{'unit':>13} {'LUT4':>6} {'CCU2C':>6} {'FF':>6} {'dutFF':>6} {'MULT':>5} {'lat':>4}"
     for s in speeds:
         head += f"  {'Fmax s' + str(s) + ' med [min-max]':>26}"
     print("\n" + head)
     for sm in summaries:
         u = sm["utilisation"]
         lat = str(sm["latency"])
-        line = (f"{sm['coord_bits']:>3}x{sm['dir_bits']:<2} {u['LUT4']:>6} {u['CCU2C']:>6} "
+        line = (f"{sm['name']:>13} {u['LUT4']:>6} {u['CCU2C']:>6} "
                 f"{u['TRELLIS_FF']:>6} {u['dut_ff']:>6} {u['MULT18X18D']:>5} {lat:>4}")
         for s in speeds:
             f = sm["fmax_mhz"].get(str(s))
@@ -412,7 +461,7 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
         print(line)
     for sm in summaries:
         for s, cp in sm["critical_path"].items():
-            print(f"{sm['coord_bits']}x{sm['dir_bits']} speed {s} (seed {cp['seed']}) limit: "
+            print(f"{sm['name']} speed {s} (seed {cp['seed']}) limit: "
                   f"{cp['delay_ns']} ns ({cp['logic_ns']} logic, {cp['routing_ns']} routing): "
                   f"{cp['cell_chain']}")
             print(f"    {cp['source_cell']} -> {cp['sink_cell']}.{cp['sink_port']}")
@@ -422,31 +471,24 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
 
 # --------------------------------------------------------------------------
 
-def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
-             sources: list[Path]) -> dict:
-    name = f"{c}x{d}" + (f"_{args.mul_style}" if args.mul_style != "auto" else "") + (
-        f"_p{args.pipeline}" if args.pipeline else "")
-    base = Path(args.out) / name
-    tag = f"[{name}]"
+def flow_one(target: Target, args, tools: dict, yosys: str, nextpnr: str | None, rtl_dir: Path) -> dict:
     # LATENCY, FIFO depth and the DSP count from the port contract (the RTL
     # checks at elaboration that it derives the same).
-    try:
-        row = contract.row(c, d, args.mul_style, args.pipeline)
-    except contract.ContractError as e:
-        raise FlowError(str(e)) from None
-    params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
-              "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "PIPELINE": args.pipeline}
-    say(f"{tag} yosys synth_ecp5 ({', '.join(s.name for s in sources)}) ...")
-    ys = run_yosys(yosys, sources, params, base)
+    row = target.row
+    sources = rtl_sources(rtl_dir, target.dut)
+    base = Path(args.out) / target.name
+    tag = f"[{target.name}]"
+    say(f"{tag} yosys synth_ecp5 of {target.dut} ({', '.join(s.name for s in sources)}) ...")
+    ys = run_yosys(yosys, sources, target, base)
     cells = ys["cells"]
     say(f"{tag} yosys done in {ys['seconds']:.0f} s: LUT4 {cells.get('LUT4', 0)}, "
         f"CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
         f"(harness {ys['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}")
     if cells.get("MULT18X18D", 0) != row["mult18x18d"]:
         raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
-                        f"says {row['mult18x18d']} ({row['multiplier']} multipliers)")
+                        f"says {row['mult18x18d']} (multipliers: {row['multiplier']})")
     say(f"{tag} latency {row['latency']} cycles, FIFO depth {row['fifo_depth']}, "
-        f"{row['multiplier']} multipliers (port contract)")
+        f"multipliers: {row['multiplier']} (port contract)")
 
     runs: list[dict] = []
     if not args.no_pnr:
@@ -457,7 +499,7 @@ def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
                 jobs.append({"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                              "types": ys["cell_types"],
                              "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir,
-                                                speed, seed, args.freq)})
+                                                speed, seed, args.freq, target.top)})
         workers = max(1, min(args.jobs, MAX_PARALLEL, len(jobs)))
         say(f"{tag} nextpnr: {len(jobs)} runs (speeds {args.speeds}, seeds 1..{args.seeds}, "
             f"target {args.freq:g} MHz), {workers} at a time")
@@ -475,7 +517,7 @@ def flow_one(c: int, d: int, args, tools: dict, yosys: str, nextpnr: str | None,
                         f"{r['fmax']:.1f} MHz in {r['seconds']:.0f} s")
                 runs.append(r)
         runs.sort(key=lambda r: (r["speed"], r["seed"]))
-    summary = write_summary(base, c, d, args, ys, row, runs, tools)
+    summary = write_summary(base, target, args, ys, runs, tools)
     say(f"{tag} summary: {base / 'summary.json'}")
     return summary
 
@@ -485,8 +527,14 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--coord-bits", type=int, default=16)
     p.add_argument("--dir-bits", type=int, default=16)
     p.add_argument("--widths", help="list of CxD pairs, e.g. 12x12,16x16 (overrides --coord/dir-bits)")
+    p.add_argument("--unit", choices=("fixed", "float", "smits"), default="fixed",
+                   help="fixed: pluecker_intersector; float: pluecker_float_intersector; "
+                        "smits: pluecker_smits_intersector")
     p.add_argument("--tag-bits", type=int, default=16)
-    p.add_argument("--conservative", type=int, choices=(0, 1), default=1)
+    p.add_argument("--conservative", type=int, choices=(0, 1), default=None,
+                   help="CONSERVATIVE (default 1 for fixed, 0 for float)")
+    p.add_argument("--mul-dsp", type=int, default=None,
+                   help="MUL_DSP of a binary32 unit (default the port contract's)")
     lim = contract.load()["limits"]
     p.add_argument("--mul-style", choices=lim["mul_styles"], default="auto", help="MUL_STYLE")
     p.add_argument("--pipeline", type=int, choices=range(lim["pipeline"][0], lim["pipeline"][1] + 1),
@@ -500,6 +548,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--rtl", default=str(ROOT / "rtl"), help="RTL directory")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
+    if args.conservative is None:
+        args.conservative = 1 if args.unit == "fixed" else 0
+    if args.unit == "fixed" and args.mul_dsp is not None:
+        p.error("--mul-dsp is a parameter of the binary32 units (--unit float or smits)")
     if args.smoke:
         args.seeds, args.speeds = 1, "8"
     if args.out is None:
@@ -518,9 +570,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str]) -> int:
     args = parse_args(argv)
     try:
-        pairs = parse_widths(args.widths) if args.widths else parse_widths(
-            f"{args.coord_bits}x{args.dir_bits}")
-        sources = rtl_sources(Path(args.rtl))
+        if args.unit == "fixed":
+            pairs = parse_widths(args.widths) if args.widths else parse_widths(
+                f"{args.coord_bits}x{args.dir_bits}")
+            targets = [fixed_target(c, d, args) for c, d in pairs]
+        else:
+            targets = [float_target(args)]
         yosys = yosys_tool()
         nextpnr = nextpnr_tool()
         if not yosys:
@@ -531,7 +586,7 @@ def main(argv: list[str]) -> int:
         if not args.no_pnr:
             tools["nextpnr"] = tool_version(nextpnr, "--version")
         t0 = time.monotonic()
-        summaries = [flow_one(c, d, args, tools, yosys, nextpnr, sources) for c, d in pairs]
+        summaries = [flow_one(t, args, tools, yosys, nextpnr, Path(args.rtl)) for t in targets]
     except FlowError as e:
         print(f"synth: error: {e}", file=sys.stderr)
         return 1

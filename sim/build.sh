@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Builds the Verilator harness `pluecker_sim` for one RTL configuration:
-# configures sim/CMakeLists.txt (rtl/pluecker_intersector.sv verilated with
-# -G parameters, the harness in sim/, the model's libraries from the CMake
-# package of its build directory) in SIM_OUT and builds it.
+# configures sim/CMakeLists.txt (rtl/pluecker_intersector.sv, or a binary32
+# unit, verilated with -G parameters, the harness in sim/ or sim/float/, the
+# model's libraries from the CMake package of its build directory) in
+# SIM_OUT and builds it.
+#
+# SIM_UNIT (fixed|float|smits, default fixed): the unit. For float and smits,
+# MODE defaults to nearest (float: conservative = CONSERVATIVE 1; smits has
+# nearest only), SIM_MUL_DSP (1, 3 or 4; default the contract's) is MUL_DSP,
+# the widths are not used, and SIM_OUT defaults to
+# build/sim/<unit>[_cons]_dsp<M>.
 #
 # Settings (environment): COORD_BITS, DIR_BITS (the port contract's limits,
 # 6..24; default 16),
@@ -26,9 +33,14 @@ die() {
   exit 2
 }
 
+UNIT="${SIM_UNIT:-fixed}"
+case "$UNIT" in
+  fixed) MODE="${MODE:-conservative}" ;;
+  float | smits) MODE="${MODE:-nearest}" ;;
+  *) die "SIM_UNIT=$UNIT is not one of fixed, float, smits" ;;
+esac
 C="${COORD_BITS:-16}"
 D="${DIR_BITS:-16}"
-MODE="${MODE:-conservative}"
 T="${SIM_TAG_BITS:-8}"
 jobs="${SIM_JOBS:-2}"
 # The width limits of the port contract (rtl/pluecker_contract.json).
@@ -48,11 +60,23 @@ case "$MODE" in
   nearest) suffix="_nearest" ;;
   *) die "MODE=$MODE is not one of conservative, nearest" ;;
 esac
+[[ "$UNIT" == smits && "$MODE" == conservative ]] && die "SIM_UNIT=smits has no conservative variant (MODE=nearest)"
+M="${SIM_MUL_DSP:-}"
+if [[ "$UNIT" != fixed ]]; then
+  mul_dsps="$(python3 "$root/scripts/contract.py" float-limits)" || die "cannot read the float port contract"
+  [[ -n "$M" ]] || M="$(sed -n 's/^default_mul_dsp=//p' <<< "$mul_dsps")"
+  [[ " $(sed -n 's/^mul_dsp=//p' <<< "$mul_dsps") " == *" $M "* ]] ||
+    die "SIM_MUL_DSP=$M is not one of $(sed -n 's/^mul_dsp=//p' <<< "$mul_dsps")"
+  name="${UNIT}$([[ $MODE == conservative ]] && echo _cons || true)_dsp${M}"
+else
+  M=4
+  name="${C}x${D}${suffix}"
+fi
 [[ "$jobs" =~ ^[1-9][0-9]*$ ]] || die "SIM_JOBS=$jobs is not a positive integer"
 
 model_build="${MODEL_BUILD:-build/model}"
 rtl="${SIM_RTL:-rtl/pluecker_intersector.sv}"
-out="${SIM_OUT:-build/sim/${C}x${D}${suffix}}"
+out="${SIM_OUT:-build/sim/${name}}"
 [[ -f "$rtl" ]] || die "RTL source $rtl not found"
 [[ -f "$model_build/pluecker-config.cmake" ]] ||
   die "model build $model_build has no CMake package pluecker-config.cmake (run 'make build' first)"
@@ -82,6 +106,7 @@ unset IFS
 
 cmake -S "$root/sim" -B "$out" -DCMAKE_BUILD_TYPE=Release -DPLUECKER_MODEL_BUILD="$model_build" \
   -DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_MODE="$MODE" -DSIM_TAG_BITS="$T" -DSIM_PIPELINE="${SIM_PIPELINE:-0}" -DSIM_RTL="$rtl" \
+  -DSIM_UNIT="$UNIT" -DSIM_MUL_DSP="$M" \
   -DSIM_ASSERT="$asserts" -DSIM_DIRECT_EVAL="$direct" -DSIM_VFLAGS="$vlist" > "$out/configure.log" 2>&1 ||
   {
     cat "$out/configure.log" >&2
