@@ -136,13 +136,18 @@ elif [ "$nclass" -eq 0 ]; then
 fi
 # The check fires: a contract row that disagrees with the RTL, and an RTL
 # that adds a stage without the contract, both fail elaboration.
-disagrees() {  # <what> <file> <sed edit> <grep pattern>
+disagrees() {  # <what> <file> <sed edit> <grep pattern> [<binary32 top>]
+    local top=${5:-$TOP}
     rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
     sed -i "$3" "$LOG/rtl/$2"
+    # The fixed-point intersector reads every file; a binary32 unit its
+    # contract package and its top, the rest found with -y.
+    local files=("$LOG"/rtl/*.sv)
+    [ -n "${5:-}" ] && files=("$LOG/rtl/pluecker_contract_float_pkg.sv" -y "$LOG/rtl" "$LOG/rtl/$top.sv")
     if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
         note "$1" "FAIL (the edit did not apply)"
         fail=1
-    elif verilator --lint-only --top-module "$TOP" "$LOG"/rtl/*.sv > "$LOG/d.log" 2>&1; then
+    elif verilator --lint-only --top-module "$top" "${files[@]}" > "$LOG/d.log" 2>&1; then
         note "$1" "FAIL (elaborated)"
         fail=1
     elif grep -q "USERERROR.*$4" "$LOG/d.log"; then
@@ -161,10 +166,10 @@ disagrees "an RTL stage the contract lacks is refused" pluecker_intersector.sv \
     "LATENCY differs from the port contract"
 
 # --- 3. Parameter checks fire ---------------------------------------------------
-reject() {  # <what> <grep pattern> <-G arguments...>
+refused() {  # <what> <grep pattern> <verilator arguments...>: elaboration fails with the message
     local what=$1 pattern=$2
     shift 2
-    if verilator --lint-only "$@" --top-module "$TOP" "${SOURCES[@]}" > "$LOG/v.log" 2>&1; then
+    if verilator --lint-only "$@" > "$LOG/v.log" 2>&1; then
         note "$what" FAIL
         fail=1
     elif grep -q "USERERROR.*$pattern" "$LOG/v.log"; then
@@ -174,6 +179,11 @@ reject() {  # <what> <grep pattern> <-G arguments...>
         cat "$LOG/v.log"
         fail=1
     fi
+}
+reject() {  # <what> <grep pattern> <-G arguments...>
+    local what=$1 pattern=$2
+    shift 2
+    refused "$what" "$pattern" "$@" --top-module "$TOP" "${SOURCES[@]}"
 }
 for bad in "COORD_BITS=$((LO - 1))" "COORD_BITS=$((HI + 1))" "DIR_BITS=$((LO - 1))" "DIR_BITS=$((HI + 1))" \
     "TAG_BITS=0" "PIPELINE=2" "PIPELINE=-1"; do
@@ -275,46 +285,19 @@ for rnd in 0 1 2; do
 done
 # The contract check fires: a package that disagrees with the RTL, and an
 # RTL that adds a stage without the contract, fail elaboration.
-float_disagrees() {  # <what> <file> <sed edit> <top> <grep pattern>
-    rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
-    sed -i "$3" "$LOG/rtl/$2"
-    if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
-        note "$1" "FAIL (the edit did not apply)"
-        fail=1
-    elif verilator --lint-only --top-module "$4" "$LOG/rtl/pluecker_contract_float_pkg.sv" -y "$LOG/rtl" \
-        "$LOG/rtl/$4.sv" > "$LOG/d.log" 2>&1; then
-        note "$1" "FAIL (elaborated)"
-        fail=1
-    elif grep -q "USERERROR.*$5" "$LOG/d.log"; then
-        note "$1" ok
-    else
-        note "$1" "FAIL (no contract message)"
-        cat "$LOG/d.log"
-        fail=1
-    fi
-}
-float_disagrees "float: a contract LATENCY one too high is refused" pluecker_contract_float_pkg.sv \
+disagrees "float: a contract LATENCY one too high is refused" pluecker_contract_float_pkg.sv \
     "s/localparam int FLOAT_LATENCY = \([0-9]*\);/localparam int FLOAT_LATENCY = 1\1;/" \
-    pluecker_float_intersector "LATENCY differs from the port contract"
-float_disagrees "smits: a contract FIFO depth that differs is refused" pluecker_contract_float_pkg.sv \
+    "LATENCY differs from the port contract" pluecker_float_intersector
+disagrees "smits: a contract FIFO depth that differs is refused" pluecker_contract_float_pkg.sv \
     "s/localparam int SMITS_FIFO_DEPTH = \([0-9]*\);/localparam int SMITS_FIFO_DEPTH = 1\1;/" \
-    pluecker_smits_intersector "FIFO_DEPTH differs from the port contract"
-float_disagrees "an adder stage the contract lacks is refused" pluecker_f32_add.sv \
-    "s/localparam int LATENCY = \\([0-9]*\\);/localparam int LATENCY = 1\\1;/" pluecker_float_intersector \
-    "pluecker_f32_add: LATENCY differs from the port contract"
+    "FIFO_DEPTH differs from the port contract" pluecker_smits_intersector
+disagrees "an adder stage the contract lacks is refused" pluecker_f32_add.sv \
+    "s/localparam int LATENCY = \([0-9]*\);/localparam int LATENCY = 1\1;/" \
+    "pluecker_f32_add: LATENCY differs from the port contract" pluecker_float_intersector
 float_reject() {  # <what> <top> <grep pattern> <-G arguments...>
     local what=$1 top=$2 pattern=$3
     shift 3
-    if verilator --lint-only "$@" --top-module "$top" "$FLOAT_PKG" -y rtl "rtl/$top.sv" > "$LOG/v.log" 2>&1; then
-        note "$what" FAIL
-        fail=1
-    elif grep -q "USERERROR.*$pattern" "$LOG/v.log"; then
-        note "$what" ok
-    else
-        note "$what" "FAIL (no parameter message)"
-        cat "$LOG/v.log"
-        fail=1
-    fi
+    refused "$what" "$pattern" "$@" --top-module "$top" "$FLOAT_PKG" -y rtl "rtl/$top.sv"
 }
 for top in pluecker_float_intersector pluecker_smits_intersector; do
     float_reject "verilator rejects $top TAG_BITS=0" "$top" "TAG_BITS" -GTAG_BITS=0

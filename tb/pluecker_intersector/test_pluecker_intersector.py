@@ -35,8 +35,6 @@ from __future__ import annotations
 
 import json
 import os
-import random
-import time
 from pathlib import Path
 
 import pytest
@@ -52,7 +50,6 @@ _seed = config.seed
 
 try:
     import cocotb
-    from cocotb.triggers import ClockCycles
 
     from pluecker_tb.intersector import IntersectorBench as Bench
     from pluecker_tb.intersector import stimulus as _stimulus
@@ -92,29 +89,7 @@ if cocotb is not None:
         """Resets in the middle of a stream drop everything in flight."""
         bench = Bench(dut, _seed("reset"), idle=True, backpressure=True)
         await bench.start()
-        vectors = _stimulus(bench, "random", _n(3000), "reset")
-        resets = 0
-
-        async def reset_pulses() -> None:
-            nonlocal resets
-            rng = random.Random(bench.seed + 1)
-            while True:
-                await ClockCycles(dut.clk_i, rng.randint(10, 200))
-                dut.rst_i.value = 1
-                await ClockCycles(dut.clk_i, rng.choice([1, 1, 2, 3, 7]))
-                dut.rst_i.value = 0
-                resets += 1
-
-        pulses = cocotb.start_soon(reset_pulses())
-        await bench.drive(vectors)
-        pulses.cancel()
-        dut.rst_i.value = 0
-        await bench.drain()
-        assert resets >= 3, f"only {resets} resets happened"
-        assert bench.dropped > 0, "no reset hit a query in flight"
-        assert bench.compared + bench.dropped == bench.accepted == len(vectors), (
-            f"accepted {bench.accepted}, compared {bench.compared}, dropped {bench.dropped}")
-        bench.finish(f"reset ({resets} resets)")
+        await bench.reset_mid_stream(_stimulus(bench, "random", _n(3000), "reset"))
 
     @cocotb.test()
     async def throughput(dut) -> None:
@@ -128,45 +103,22 @@ if cocotb is not None:
         # which must agree with it.
         contract = pp.PortContract(bench.coord_bits, bench.dir_bits, bench.tag_bits, bench.conservative,
                                    os.environ.get("PLUECKER_TB_MUL_STYLE", "auto"), int(dut.PIPELINE.value))
-        latency, depth = contract.latency, contract.fifo_depth
-        dut_values = (int(dut.LATENCY.value), int(dut.FIFO_DEPTH.value))
-        assert dut_values == (latency, depth), (
-            f"DUT LATENCY, FIFO_DEPTH = {dut_values}, port contract {(latency, depth)} ({contract!r})")
-        for port in contract.ports:
-            assert len(getattr(dut, port.name)) == port.width, (
-                f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
+        latency, depth = bench.check_contract(contract)
 
         # Phase 1: never stalled, so one query is taken every clock.
         # PLUECKER_BENCH_N sets its length and PLUECKER_BENCH_JSON a file for
         # the wall-clock rate (scripts/cocotb_bench.py, `make bench`).
         n_bench = int(os.environ.get("PLUECKER_BENCH_N", "0")) or 300 * SCALE
         vectors = _stimulus(bench, "random", n_bench, "throughput")
-        start = time.perf_counter()
-        await bench.drive(vectors)
-        await bench.drain()
-        seconds = time.perf_counter() - start
+        seconds = await bench.full_rate(vectors, latency)
         n = len(vectors)
-        dut._log.info("cocotb throughput: %d queries in %.3f s wall = %.0f queries/s "
-                      "(driver, sink and scoreboard included)", n, seconds, n / seconds)
         if os.environ.get("PLUECKER_BENCH_JSON"):
             Path(os.environ["PLUECKER_BENCH_JSON"]).write_text(json.dumps(
                 {"queries": n, "seconds": seconds, "queries_per_second": n / seconds,
                  "coord_bits": bench.coord_bits, "dir_bits": bench.dir_bits}) + "\n")
-        assert bench.in_edges[-1] - bench.in_edges[0] == n - 1, "input was not taken every clock"
-        assert bench.out_edges[-1] - bench.out_edges[0] == n - 1, "results did not come every clock"
-        assert set(bench.latencies) == {latency}, f"latency {dict(bench.latencies)}, LATENCY = {latency}"
 
         # Phase 2: output blocked; exactly FIFO_DEPTH queries get in.
-        bench.ready_override = 0
-        more = _stimulus(bench, "extreme", depth + 16, "credits")
-        before = bench.accepted
-        task = cocotb.start_soon(bench.drive(more))
-        await ClockCycles(dut.clk_i, depth + latency + 50)
-        assert bench.accepted - before == depth, f"{bench.accepted - before} taken with the output blocked"
-        bench.ready_override = None
-        await task
-        await bench.drain()
-        assert bench.compared == n + len(more)
+        await bench.credits_stop_input(_stimulus(bench, "extreme", depth + 16, "credits"), latency, depth)
         bench.finish(f"throughput (LATENCY {latency}, FIFO_DEPTH {depth})")
 
 

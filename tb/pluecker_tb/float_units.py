@@ -33,13 +33,11 @@ from __future__ import annotations
 
 import os
 import random
-import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
 import cocotb
-from cocotb.triggers import ClockCycles
 
 from . import config
 from .stream_bench import StreamBench
@@ -221,29 +219,7 @@ async def reset_mid_stream(dut) -> None:
     """Resets in the middle of a stream drop everything in flight."""
     bench = FloatUnitBench(dut, config.seed("reset"), idle=True, backpressure=True)
     await bench.start()
-    vectors = stimulus(bench, "random", _n(1500), "reset")
-    resets = 0
-
-    async def reset_pulses() -> None:
-        nonlocal resets
-        rng = random.Random(bench.seed + 1)
-        while True:
-            await ClockCycles(dut.clk_i, rng.randint(10, 200))
-            dut.rst_i.value = 1
-            await ClockCycles(dut.clk_i, rng.choice([1, 1, 2, 3, 7]))
-            dut.rst_i.value = 0
-            resets += 1
-
-    pulses = cocotb.start_soon(reset_pulses())
-    await bench.drive(vectors)
-    pulses.cancel()
-    dut.rst_i.value = 0
-    await bench.drain()
-    assert resets >= 3, f"only {resets} resets happened"
-    assert bench.dropped > 0, "no reset hit a query in flight"
-    assert bench.compared + bench.dropped == bench.accepted == len(vectors), (
-        f"accepted {bench.accepted}, compared {bench.compared}, dropped {bench.dropped}")
-    bench.finish(f"reset ({resets} resets)")
+    await bench.reset_mid_stream(stimulus(bench, "random", _n(1500), "reset"))
 
 
 @cocotb.test()
@@ -251,35 +227,8 @@ async def throughput(dut) -> None:
     """One query per clock, the contract's latency, credits stop the input."""
     bench = FloatUnitBench(dut, config.seed("throughput"))
     await bench.start()
-    contract = bench.contract()
-    latency, depth = contract.latency, contract.fifo_depth
-    dut_values = (int(dut.LATENCY.value), int(dut.FIFO_DEPTH.value))
-    assert dut_values == (latency, depth), (
-        f"DUT LATENCY, FIFO_DEPTH = {dut_values}, port contract {(latency, depth)} ({contract!r})")
-    for port in contract.ports:
-        assert len(getattr(dut, port.name)) == port.width, (
-            f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
-
-    # Phase 1: never stalled, so one query is taken every clock.
-    vectors = stimulus(bench, "random", 300 * config.SCALE, "throughput")
-    start = time.perf_counter()
-    await bench.drive(vectors)
-    await bench.drain()
-    n = len(vectors)
-    dut._log.info("cocotb throughput: %d queries in %.3f s wall", n, time.perf_counter() - start)
-    assert bench.in_edges[-1] - bench.in_edges[0] == n - 1, "input was not taken every clock"
-    assert bench.out_edges[-1] - bench.out_edges[0] == n - 1, "results did not come every clock"
-    assert set(bench.latencies) == {latency}, f"latency {dict(bench.latencies)}, LATENCY = {latency}"
-
-    # Phase 2: output blocked; exactly FIFO_DEPTH queries get in.
-    bench.ready_override = 0
-    more = stimulus(bench, "extreme", depth + 16, "credits")
-    before = bench.accepted
-    task = cocotb.start_soon(bench.drive(more))
-    await ClockCycles(dut.clk_i, depth + latency + 50)
-    assert bench.accepted - before == depth, f"{bench.accepted - before} taken with the output blocked"
-    bench.ready_override = None
-    await task
-    await bench.drain()
-    assert bench.compared == n + len(more)
+    latency, depth = bench.check_contract(bench.contract())
+    # Phase 1: never stalled; phase 2: output blocked, FIFO_DEPTH queries get in.
+    await bench.full_rate(stimulus(bench, "random", 300 * config.SCALE, "throughput"), latency)
+    await bench.credits_stop_input(stimulus(bench, "extreme", depth + 16, "credits"), latency, depth)
     bench.finish(f"throughput (LATENCY {latency}, FIFO_DEPTH {depth})")

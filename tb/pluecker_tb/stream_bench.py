@@ -20,8 +20,10 @@ out_valid_o in the first cycle after a reset.
 from __future__ import annotations
 
 import random
+import time
 
 import cocotb
+from cocotb.triggers import ClockCycles
 
 from . import clock_reset, traffic
 from .stream import InOrderScoreboard, StreamDriver, StreamSink, drain
@@ -139,3 +141,75 @@ class StreamBench:
         self.dut._log.info(
             "%s: %d results compared (%d hits), %d dropped by reset, %d cycles, latency histogram %s",
             what, self.compared, self.hits, self.dropped, self.edges, self.scoreboard.histogram())
+
+    # -- test procedures shared by the units' benches ------------------------------
+    async def reset_mid_stream(self, vectors) -> None:
+        """Drives `vectors` while rst_i pulses at random moments: every query
+        accepted before a reset must vanish (checked by the scoreboard), at
+        least three resets must come and one must hit a query in flight."""
+        dut = self.dut
+        resets = 0
+
+        async def reset_pulses() -> None:
+            nonlocal resets
+            rng = random.Random(self.seed + 1)
+            while True:
+                await ClockCycles(dut.clk_i, rng.randint(10, 200))
+                dut.rst_i.value = 1
+                await ClockCycles(dut.clk_i, rng.choice([1, 1, 2, 3, 7]))
+                dut.rst_i.value = 0
+                resets += 1
+
+        pulses = cocotb.start_soon(reset_pulses())
+        await self.drive(vectors)
+        pulses.cancel()
+        dut.rst_i.value = 0
+        await self.drain()
+        assert resets >= 3, f"only {resets} resets happened"
+        assert self.dropped > 0, "no reset hit a query in flight"
+        assert self.compared + self.dropped == self.accepted == len(vectors), (
+            f"accepted {self.accepted}, compared {self.compared}, dropped {self.dropped}")
+        self.finish(f"reset ({resets} resets)")
+
+    def check_contract(self, contract) -> tuple[int, int]:
+        """The DUT's LATENCY and FIFO_DEPTH localparams and its port widths
+        must be the port contract's (computed from the DUT's parameters
+        alone); returns (LATENCY, FIFO depth)."""
+        dut = self.dut
+        latency, depth = contract.latency, contract.fifo_depth
+        dut_values = (int(dut.LATENCY.value), int(dut.FIFO_DEPTH.value))
+        assert dut_values == (latency, depth), (
+            f"DUT LATENCY, FIFO_DEPTH = {dut_values}, port contract {(latency, depth)} ({contract!r})")
+        for port in contract.ports:
+            assert len(getattr(dut, port.name)) == port.width, (
+                f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
+        return latency, depth
+
+    async def full_rate(self, vectors, latency: int) -> float:
+        """Never stalled, so one query must be taken and one result given
+        every clock, each after exactly `latency` cycles; returns the wall
+        time in seconds."""
+        start = time.perf_counter()
+        await self.drive(vectors)
+        await self.drain()
+        seconds = time.perf_counter() - start
+        n = len(vectors)
+        self.dut._log.info("cocotb throughput: %d queries in %.3f s wall = %.0f queries/s "
+                           "(driver, sink and scoreboard included)", n, seconds, n / seconds)
+        assert self.in_edges[-1] - self.in_edges[0] == n - 1, "input was not taken every clock"
+        assert self.out_edges[-1] - self.out_edges[0] == n - 1, "results did not come every clock"
+        assert set(self.latencies) == {latency}, f"latency {dict(self.latencies)}, LATENCY = {latency}"
+        return seconds
+
+    async def credits_stop_input(self, more, latency: int, depth: int) -> None:
+        """With the output blocked exactly `depth` queries of `more` (at
+        least depth + 1 of them) get in; then all of them come out."""
+        self.ready_override = 0
+        before, compared = self.accepted, self.compared
+        task = cocotb.start_soon(self.drive(more))
+        await ClockCycles(self.dut.clk_i, depth + latency + 50)
+        assert self.accepted - before == depth, f"{self.accepted - before} taken with the output blocked"
+        self.ready_override = None
+        await task
+        await self.drain()
+        assert self.compared == compared + len(more)
