@@ -43,7 +43,9 @@ build: setup
 
 # The main job: the golden-model render of SCENE with the fixed-point
 # test, the same render with every box test answered by the Verilated RTL
-# (sim-render, in the harness section), their byte-for-
+# (sim-render, in the harness section), operands on the datapath's decision
+# boundaries through the same RTL against the model (sim-boundary: a render
+# alone cannot see an off-by-one in the margin), the renders' byte-for-
 # byte comparison (fails loudly), and out/report/main.html.
 main: build
 	@mkdir -p $(OUT)/report
@@ -51,6 +53,7 @@ main: build
 	  --order dsa --size $(SIZE) --quiet --out $(MAIN_MODEL).png --stats $(MAIN_MODEL).json
 	@$(MAKE) --no-print-directory sim-render SCENE=$(SCENE) COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) \
 	  MODE=$(MODE) SIM_SIZE=$(SIZE)
+	@$(MAKE) --no-print-directory sim-boundary COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE)
 	@$(ENV) python scripts/main_report.py --scene $(SCENE) --cli $(CLI) --jobs $(JOBS) \
 	  --model-png $(MAIN_MODEL).png --model-json $(MAIN_MODEL).json --rtl-png $(MAIN_RTL).png \
 	  --rtl-json $(MAIN_RTL).json --out $(OUT)/report/main.html \
@@ -64,9 +67,10 @@ main: build
 	fi
 
 # The whole suite, as .ci/run runs it: C++ tests, lint, the pytest/cocotb
-# suite, the C++ tests again under ASan + UBSan (test-sanitize) and the
-# formal proof of the handshake rules (formal); both in sections below.
-test: test-cpp lint test-tb test-sanitize formal
+# suite, the C++ tests again under ASan + UBSan (test-sanitize), the
+# formal proof of the handshake rules (formal) and a few seeded bugs that
+# the tests must catch (mutate-smoke); the last three in sections below.
+test: test-cpp lint test-tb test-sanitize formal mutate-smoke
 
 test-cpp: build
 	cd $(BUILD) && ctest --output-on-failure -j$(JOBS)
@@ -105,16 +109,20 @@ clean:
 # make sim-query   streams QUERIES (default: generated) through the RTL, --check
 # make sim-render  hardware-in-the-loop render of SCENE at SIM_SIZE into out/
 # make sim-bench   RTL throughput (queries per second)
+# make sim-boundary  SIM_BOUNDARY_N operands on the decision boundaries (the
+#                  margin's bound, the end and origin tests) through the RTL,
+#                  --check against the model (part of the main job)
 # Variables: COORD_BITS, DIR_BITS, MODE (conservative|nearest), SIM_TAG_BITS.
 SIM_TAG_BITS ?= 8
 SIM_SIZE     ?= $(SIZE)
 SIM_N        ?= 2000000
+SIM_BOUNDARY_N ?= 20000
 SIM_DIR       = build/sim/$(COORD_BITS)x$(DIR_BITS)$(if $(filter nearest,$(MODE)),_nearest)
 SIM_BIN       = $(SIM_DIR)/pluecker_sim
 SIM_VARS      = COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
                 MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS)
 
-.PHONY: sim sim-query sim-render sim-bench sim-float
+.PHONY: sim sim-query sim-render sim-bench sim-boundary sim-float
 
 sim: build
 	@$(SIM_VARS) $(ENV) sim/build.sh
@@ -131,6 +139,10 @@ sim-render: sim
 
 sim-bench: sim
 	$(SIM_BIN) bench --n $(SIM_N)
+
+sim-boundary: sim
+	@q=$(SIM_DIR)/boundary.txt; $(SIM_BIN) gen --n $(SIM_BOUNDARY_N) --kind boundary --out $$q && \
+	$(SIM_BIN) query --check $$q > $(SIM_DIR)/boundary.answers
 
 # make sim-float   builds the harness of a binary32 unit (FLOAT_UNIT float|smits,
 #                  FLOAT_MODE nearest|conservative, MUL_DSP) in
@@ -296,10 +308,11 @@ peer: setup
 # make sim-regress  the long versions: 1M extreme + 1M transformed queries
 #                   through `fixed` at every width pair of {6,9,..,24}^2 and the
 #                   margin's boundary suites (PLUECKER_LONG=1 model_tests),
-#                   REGRESS_N extreme queries through the Verilated RTL at
+#                   REGRESS_N extreme, set-up, decision-boundary and
+#                   full-port-range queries through the Verilated RTL at
 #                   REGRESS_WIDTHS (built with ASSERT_ON in build/regress/sim;
 #                   zero mismatches against the model, zero false misses
-#                   against exact), the long cocotb stress bench (its
+#                   against exact for the float queries), the long cocotb stress bench (its
 #                   sizes scale with REGRESS_N) and the long cocotb sweeps
 #                   (PLUECKER_LONG=1: the intersector at every width pair of
 #                   its sweep in both modes, the multipliers, the binary32
@@ -311,16 +324,34 @@ peer: setup
 #                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
 #                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
 #                   end-to-end check (13 min loaded, builds included).
-# make formal       SymbiYosys (YoWASP) + z3: k-induction proof of the
-#                   handshake and flow-control properties at 6/6, and cover;
-#                   FORMAL_FLAGS=--mutants also checks that four seeded RTL
-#                   bugs are caught. Logs in build/formal/.
+# make formal       SymbiYosys (YoWASP) + z3: unbounded proof (1-step
+#                   k-induction) of the handshake and flow-control properties
+#                   at 6/6, 6/6 PIPELINE=1, 6/18 and 18/18 (S2x stages 0, 1,
+#                   1, 2; MUL_ADD 0, 0, 1, 2), cover at 6/6: about 2.5 CPU
+#                   minutes, 5-6 min on 2 loaded cores (fpga/formal/README.md).
+#                   Logs in build/formal/. Its seeded handshake bugs are
+#                   among make mutate's.
+# make mutate       seeded bugs (scripts/mutate.py: the RTL's margin, plane,
+#                   end and origin tests, flow control, LATENCY +-1, the
+#                   multipliers' signs, the model's set-up roundings and
+#                   clip, planes per class, the port encoding, the formal
+#                   harness's handshake bugs), each applied to a copy of the
+#                   tree (build/mutate/tree) and run against the tests that
+#                   must catch it, after a baseline run of those tests on the
+#                   unmodified copy; prints mutant -> caught by -> time and
+#                   fails when one survives. MUTANTS=a,b runs those only.
+#                   16 min on 2 loaded cores with the copy's builds cached,
+#                   about 35 min on the first run (README, Verification).
+# make mutate-smoke the fast mutants (the RTL margin's +1 through the
+#                   harness's boundary check, the model's segment-end
+#                   rounding through its pinning test), in `make test`.
 REGRESS_N      ?= 1000000
 REGRESS_FLOAT_N ?= 10000000
 REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
-FORMAL_FLAGS   ?=
 
-.PHONY: sim-regress formal
+MUTANTS        ?=
+
+.PHONY: sim-regress formal mutate mutate-smoke
 
 sim-regress: build
 	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
@@ -328,4 +359,10 @@ sim-regress: build
 	  $(ENV) scripts/regress.sh
 
 formal: setup
-	@$(ENV) fpga/formal/run.sh $(FORMAL_FLAGS)
+	@$(ENV) fpga/formal/run.sh
+
+mutate: build
+	@$(ENV) python scripts/mutate.py --jobs $(JOBS) --model-build $(BUILD) $(if $(MUTANTS),--only $(MUTANTS))
+
+mutate-smoke: build
+	@$(ENV) python scripts/mutate.py --smoke --jobs $(JOBS) --model-build $(BUILD)

@@ -15,7 +15,12 @@
 #      range) through the Verilated RTL at each of REGRESS_WIDTHS with
 #      `pluecker_sim query --check` (zero mismatches against the model), and
 #      the RTL's answers against `pluecker query --test exact` (zero false
-#      misses in conservative mode). The harness is built with the RTL's
+#      misses in conservative mode); then REGRESS_N datapath operands on the
+#      decision boundaries (--kind boundary: the margin's bound, the end and
+#      origin tests) and REGRESS_N from the full port ranges (--kind ports),
+#      the cocotb bench's boundary and raw sources, against the model (zero
+#      mismatches; they are not float queries, so there is no exact run).
+#      The harness is built with the RTL's
 #      ASSERT_ON assertions compiled in (SIM_ASSERT=1), in its own
 #      directories (REGRESS_SIM_ROOT), so that it does not force `make sim`'s
 #      builds to be redone;
@@ -120,8 +125,16 @@ if [[ " $parts " == *" rtl "* ]]; then
       "$sim" gen --n "$n" --kind setup --seed 20262 --out "$setup_q"
       "$model_build/pluecker" query --test exact "$setup_q" > "$setup_exact"
     fi
-    for kind in extreme setup; do
-      if [[ $kind == extreme ]]; then qf="$queries"; ef="$exact"; else qf="$setup_q"; ef="$setup_exact"; fi
+    # Operands for this build's widths and mode (the file's header says them).
+    for kind in boundary ports; do
+      "$sim" gen --n "$n" --kind "$kind" --seed 20263 --out "$out/${kind}_${w}_${n}.txt"
+    done
+    for kind in extreme setup boundary ports; do
+      case $kind in
+        extreme) qf="$queries" ef="$exact" ;;
+        setup) qf="$setup_q" ef="$setup_exact" ;;
+        *) qf="$out/${kind}_${w}_${n}.txt" ef="" ;;
+      esac
       tag="${w}_$kind"
       rc=0
       "$sim" query --check "$qf" > "$out/rtl_$tag.answers" 2> "$out/rtl_$tag.log" || rc=$?
@@ -132,7 +145,7 @@ if [[ " $parts " == *" rtl "* ]]; then
         fail=1
         continue
       fi
-      if [[ $mode == conservative ]]; then
+      if [[ $mode == conservative && -n "$ef" ]]; then
         # Columns: exact answer, RTL answer. A false miss is 1 0.
         read -r fm fh hits <<< "$(paste -d' ' "$ef" "$out/rtl_$tag.answers" \
           | awk '$1==1 && $2==0 {m++} $1==0 && $2==1 {h++} $1==1 {r++} END {print m+0, h+0, r+0}')"

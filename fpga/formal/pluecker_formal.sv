@@ -8,17 +8,19 @@
 // harness assumes about the environment:
 //   - rst_i is high in the first cycle;
 //   - the upstream side keeps the valid/ready rule the DUT's a_in_hold checks
-//     (a query offered and not taken is offered again, unchanged);
-//   - in_tag_i = {epoch, in_count}: in_count counts the queries taken since
-//     the last reset (mod 2^SEQ_BITS), epoch counts reset pulses
-//     (mod 2^EPOCH_BITS). Tags thus number the queries.
-// With the tags numbered, the harness proves:
-//   p_order         out_valid_o -> out_tag_o == {epoch, out_count}: results
-//                   leave in input order, none is lost or duplicated, and no
-//                   query taken before a reset leaves after it (it would
-//                   carry an older epoch; a leak across exactly a multiple
-//                   of 2^EPOCH_BITS reset pulses is the one case the epoch
-//                   cannot tell)
+//     (a query offered and not taken is offered again, unchanged, tag
+//     included);
+//   - one watched query: the queries are numbered from 0 after every reset
+//     (in_count, mod 2^SEQ_BITS); the one numbered watch_seq carries the tag
+//     watch_tag. watch_seq and watch_tag are free constants (anyconst), every
+//     other tag is a free input. A proof for every watch_seq and watch_tag
+//     is a proof for every query and every tag.
+// The harness proves:
+//   p_order         out_valid_o && out_count == watch_seq -> out_tag_o ==
+//                   watch_tag: the k-th result after a reset carries the tag
+//                   of the k-th query after it, for every k and every tag:
+//                   results leave in input order, none is lost, duplicated,
+//                   or left over from before a reset
 //   p_outstanding   at most FIFO_DEPTH queries are accepted and not yet
 //                   delivered
 //   p_reset_quiet   in_ready_o and out_valid_o are low from the second reset
@@ -30,6 +32,14 @@
 //                   blocks the input (one query per clock)
 // and covers the FIFO full, a reset while it is full and stalled, a hit, a
 // miss, FIFO_DEPTH results back to back, and a full FIFO drained.
+//
+// The lemmas below (l_*) make all of it 1-inductive: each holds in every
+// state after the first and, with the others, is kept by every transition.
+// They are written without sums of valid bits (counting is what SAT
+// solvers find hard): the harness keeps the number of the query in every
+// pipeline stage (a shadow shift register beside the DUT's), the numbers
+// in flight are consecutive, the oldest is the next FIFO write, and the FIFO
+// pointers equal the query counts (SEQ_BITS is the pointer width).
 //
 // Configurations: the datapath does not take part in any handshake, but the
 // pipeline length does: it has PIPELINE + MUL_ADD stages S2x between S2 and
@@ -50,12 +60,14 @@ module pluecker_formal #(
     parameter int S2X_STAGES = -1,
     parameter int LATENCY = -1,
     parameter int FIFO_DEPTH = -1,
-    parameter int SEQ_BITS = 5,  // > log2(FIFO_DEPTH + 1): in-order numbers never alias
-    parameter int EPOCH_BITS = 3
+    // Tags are free data here (only the watched one is fixed): 4 bits tell a
+    // tag from a permutation or a constant of its bits.
+    parameter int TAG_BITS = 4
 ) (
     input wire clk_i,
     input wire rst_i,
     input wire in_valid_i,
+    input wire [TAG_BITS-1:0] in_tag_i,
     input wire [2:0] ray_class_i,
     input wire [3*COORD_BITS-1:0] ray_org_i,
     input wire [3*DIR_BITS-1:0] ray_dir_i,
@@ -66,20 +78,20 @@ module pluecker_formal #(
     input wire out_ready_i
 );
   // S0..S4, the S2x stages and the FIFO write.
-  if (S2X_STAGES < 0 || LATENCY != 6 + S2X_STAGES || FIFO_DEPTH < LATENCY + 2) begin : g_bad_contract
+  if (S2X_STAGES < 0 || LATENCY != 6 + S2X_STAGES || FIFO_DEPTH < LATENCY + 2 ||
+      (FIFO_DEPTH & (FIFO_DEPTH - 1)) != 0) begin : g_bad_contract
     $error("pluecker_formal: S2X_STAGES, LATENCY and FIFO_DEPTH must be the port contract's (run.sh sets them)");
   end
-  if ((1 << SEQ_BITS) <= FIFO_DEPTH + 1) begin : g_bad_seq_bits
-    $error("pluecker_formal: SEQ_BITS must exceed log2(FIFO_DEPTH + 1)");
-  end
-  localparam int TAG_BITS = EPOCH_BITS + SEQ_BITS;
+  // The DUT's FIFO pointer width (one bit more than the index), also the
+  // width of the query numbers: a pointer is then the number of the query
+  // it points at, and 2^SEQ_BITS > FIFO_DEPTH queries outstanding never alias.
+  localparam int SEQ_BITS = $clog2(FIFO_DEPTH) + 1;
+  localparam int AW = SEQ_BITS - 1;  // FIFO index bits
+  // Pipeline stages from the oldest (S4, index 0) to the youngest (S0).
+  localparam int NST = 5 + S2X_STAGES;
 
   wire in_ready_o, out_valid_o, out_hit_o;
   wire [TAG_BITS-1:0] out_tag_o;
-
-  logic [EPOCH_BITS-1:0] epoch_q = '0;
-  logic [SEQ_BITS-1:0] in_count_q = '0, out_count_q = '0;
-  wire [TAG_BITS-1:0] in_tag_i = {epoch_q, in_count_q};
 
   pluecker_intersector #(
       .COORD_BITS(COORD_BITS),
@@ -110,6 +122,10 @@ module pluecker_formal #(
   wire take = in_valid_i && in_ready_o && !rst_i;
   wire give = out_valid_o && out_ready_i && !rst_i;
 
+  // The watched query (free, constant over the trace).
+  (* anyconst *) logic [SEQ_BITS-1:0] watch_seq;
+  (* anyconst *) logic [TAG_BITS-1:0] watch_tag;
+
   // -------------------------------------------------------------------------
   // History (initial values: the first cycle is cycle 0)
   // -------------------------------------------------------------------------
@@ -118,14 +134,17 @@ module pluecker_formal #(
   logic rst2_q = 1'b0;  // ... two cycles ago
   logic open1_q = 1'b0;  // previous cycle: not reset and out_ready_i high
   logic in_stall_q = 1'b0;  // previous cycle: offered and not taken, no reset
-  localparam int IN_W = 3 + 4 * 3 * COORD_BITS + 3 * DIR_BITS + 1;
+  // The DUT's in_now: the tag and every query field.
+  localparam int IN_W = TAG_BITS + 3 + 4 * 3 * COORD_BITS + 3 * DIR_BITS + 1;
   wire [IN_W-1:0] in_now = {
-    ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i
+    in_tag_i, ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i
   };
   logic [IN_W-1:0] in_prev_q = '0;
+  // Queries taken and results given since the last reset (mod 2^SEQ_BITS).
+  logic [SEQ_BITS-1:0] in_count_q = '0, out_count_q = '0;
+  wire [SEQ_BITS-1:0] outstanding = in_count_q - out_count_q;
   logic [SEQ_BITS:0] burst_q = '0;  // consecutive output handshakes (saturating)
   logic full_seen_q = 1'b0;
-  wire [SEQ_BITS-1:0] outstanding = in_count_q - out_count_q;
 
   always_ff @(posedge clk_i) begin
     first_q <= 1'b0;
@@ -137,7 +156,6 @@ module pluecker_formal #(
     if (rst_i) begin
       in_count_q <= '0;
       out_count_q <= '0;
-      if (!rst1_q) epoch_q <= epoch_q + 1'b1;  // one step per reset pulse
     end else begin
       if (take) in_count_q <= in_count_q + 1'b1;
       if (give) out_count_q <= out_count_q + 1'b1;
@@ -154,38 +172,61 @@ module pluecker_formal #(
   // with S2x stages (dut.g_s2x.v_q and dut.g_s2x.tag_q, stage s at index s);
   // without, they are tied to zero here.
   // -------------------------------------------------------------------------
-  localparam int PW = $clog2(FIFO_DEPTH) + 1;  // the DUT's FIFO pointer width
   localparam int S2W = (S2X_STAGES > 0) ? S2X_STAGES : 1;
   wire probe_v0, probe_v1, probe_v2, probe_v3, probe_v4;
   wire [S2W-1:0] probe_v2x;
-  wire [PW-1:0] probe_wr, probe_rd;
   wire [TAG_BITS-1:0] probe_tag0, probe_tag1, probe_tag2, probe_tag3, probe_tag4;
   wire [S2W-1:0][TAG_BITS-1:0] probe_tag2x;
+  wire [SEQ_BITS-1:0] probe_wr, probe_rd;
   wire [TAG_BITS:0] probe_fifo[FIFO_DEPTH];  // {tag, hit}
+  wire [SEQ_BITS-1:0] probe_credits;  // the DUT's CW = $clog2(FIFO_DEPTH + 1) bits
+  wire probe_ready;
+  // The history flops of the DUT's own assertions (ASSERT_ON).
+  wire probe_chk_live, probe_in_stall, probe_out_stall;
+  wire [IN_W-1:0] probe_in_prev;
+  wire [TAG_BITS:0] probe_out_prev;
   if (S2X_STAGES == 0) begin : g_no_s2x
     assign probe_v2x = '0;
     assign probe_tag2x = '0;
   end
-  wire [PW-1:0] fifo_count = probe_wr - probe_rd;
-  logic [PW-1:0] in_flight;
+  wire [SEQ_BITS-1:0] fifo_count = probe_wr - probe_rd;
+
+  // The stages from the oldest (index 0: S4, S3, the S2x stages from the
+  // last, S2, S1) to the youngest (NST - 1: S0): valid bit and tag.
+  logic [NST-1:0] v;
+  logic [NST-1:0][TAG_BITS-1:0] tag;
   always_comb begin
-    in_flight = PW'(probe_v0) + PW'(probe_v1) + PW'(probe_v2) + PW'(probe_v3) + PW'(probe_v4);
-    for (int s = 0; s < S2X_STAGES; s++) in_flight = in_flight + PW'(probe_v2x[s]);
+    v[0] = probe_v4;
+    tag[0] = probe_tag4;
+    v[1] = probe_v3;
+    tag[1] = probe_tag3;
+    for (int s = 0; s < S2X_STAGES; s++) begin
+      v[2+s] = probe_v2x[S2X_STAGES-1-s];
+      tag[2+s] = probe_tag2x[S2X_STAGES-1-s];
+    end
+    v[NST-3] = probe_v2;
+    tag[NST-3] = probe_tag2;
+    v[NST-2] = probe_v1;
+    tag[NST-2] = probe_tag1;
+    v[NST-1] = probe_v0;
+    tag[NST-1] = probe_tag0;
   end
-  // Query numbers of the pipeline stages: the FIFO holds out_count ..
-  // out_count + fifo_count - 1, then the stages from S4 back to S0. seq2x[s]
-  // is the number behind S2x stage s (seq2x[S2X_STAGES] behind S3), so stage
-  // s holds seq2x[s + 1] and S2 holds seq2x[0].
-  wire [SEQ_BITS-1:0] seq4 = out_count_q + SEQ_BITS'(fifo_count);
-  wire [SEQ_BITS-1:0] seq3 = seq4 + SEQ_BITS'(probe_v4);
-  wire [S2X_STAGES:0][SEQ_BITS-1:0] seq2x;
-  assign seq2x[S2X_STAGES] = seq3 + SEQ_BITS'(probe_v3);
-  for (genvar s = 0; s < S2X_STAGES; s++) begin : g_seq2x
-    assign seq2x[s] = seq2x[s+1] + SEQ_BITS'(probe_v2x[s]);
+
+  // Shadow pipeline: seq_q[i] is the number the query in stage i got when it
+  // was taken (in_count then); it shifts with the DUT's stages, valid or not.
+  logic [NST-1:0][SEQ_BITS-1:0] seq_q;
+  always_ff @(posedge clk_i) begin
+    seq_q[NST-1] <= in_count_q;
+    for (int i = 0; i < NST - 1; i++) seq_q[i] <= seq_q[i+1];
   end
-  wire [SEQ_BITS-1:0] seq2 = seq2x[0];
-  wire [SEQ_BITS-1:0] seq1 = seq2 + SEQ_BITS'(probe_v2);
-  wire [SEQ_BITS-1:0] seq0 = seq1 + SEQ_BITS'(probe_v1);
+
+  // next[i]: the number of the oldest query in stages i..NST-1, or in_count
+  // when they are empty (next[NST] = in_count: the next query to be taken).
+  logic [NST:0][SEQ_BITS-1:0] next;
+  always_comb begin
+    next[NST] = in_count_q;
+    for (int i = NST - 1; i >= 0; i--) next[i] = v[i] ? seq_q[i] : next[i+1];
+  end
 
   // -------------------------------------------------------------------------
   // Environment
@@ -194,6 +235,7 @@ module pluecker_formal #(
     if (first_q) assume (rst_i);
     // The upstream valid/ready rule (what the DUT's a_in_hold checks).
     if (!rst_i && in_stall_q) assume (in_valid_i && in_now == in_prev_q);
+    if (in_count_q == watch_seq) assume (in_tag_i == watch_tag);
   end
 
   // -------------------------------------------------------------------------
@@ -201,7 +243,7 @@ module pluecker_formal #(
   // -------------------------------------------------------------------------
   always_comb begin
     if (!first_q && !rst_i) begin
-      if (out_valid_o) p_order : assert (out_tag_o == {epoch_q, out_count_q});
+      if (out_valid_o && out_count_q == watch_seq) p_order : assert (out_tag_o == watch_tag);
       p_outstanding : assert (outstanding <= FIFO_DEPTH);
       if (open1_q) p_full_rate : assert (in_ready_o);
     end
@@ -210,31 +252,45 @@ module pluecker_formal #(
   end
 
   // -------------------------------------------------------------------------
-  // Lemmas (proved like the properties; they make the properties inductive):
-  // every query in flight sits in the stage or FIFO slot its number says.
+  // Lemmas (proved like the properties; they make everything 1-inductive).
   // -------------------------------------------------------------------------
   always_comb begin
     if (!first_q) begin
-      l_in_flight : assert (SEQ_BITS'(in_flight) + SEQ_BITS'(fifo_count) == outstanding);
-      if (probe_v4) l_tag4 : assert (probe_tag4 == {epoch_q, seq4});
-      if (probe_v3) l_tag3 : assert (probe_tag3 == {epoch_q, seq3});
-      if (probe_v2) l_tag2 : assert (probe_tag2 == {epoch_q, seq2});
-      if (probe_v1) l_tag1 : assert (probe_tag1 == {epoch_q, seq1});
-      if (probe_v0) l_tag0 : assert (probe_tag0 == {epoch_q, seq0});
+      // The FIFO holds the queries out_count .. wr - 1 (the read pointer is
+      // the number of results given), the stages hold wr .. in_count - 1.
+      l_rd : assert (probe_rd == out_count_q);
+      l_wr : assert (probe_wr == next[0]);
+      l_fifo : assert (fifo_count <= outstanding);
+      // Credits: FIFO_DEPTH less the queries outstanding; ready follows the
+      // credits (the DUT's a_credit_balance and a_ready_credit, which Yosys
+      // checks one cycle late, as of the current state).
+      l_credits : assert (probe_credits == SEQ_BITS'(FIFO_DEPTH) - outstanding);
+      l_ready : assert (rst1_q ? !probe_ready : probe_ready == (probe_credits != '0));
+      // The DUT's assertion history is the harness's.
+      l_hist : assert (probe_chk_live == !rst1_q && probe_in_prev == in_prev_q &&
+                       (rst1_q || probe_in_stall == in_stall_q));
+      // A result offered and not taken is still offered (a_out_hold, now).
+      if (!rst_i && !rst1_q && probe_out_stall)
+        l_out_hold : assert (out_valid_o && {out_tag_o, out_hit_o} == probe_out_prev);
     end
   end
-  for (genvar s = 0; s < S2X_STAGES; s++) begin : g_stage2x
-    // l_tag2x (unlabelled, as l_slot below)
+  for (genvar i = 0; i < NST; i++) begin : g_stage
+    // l_next, l_tag (unlabelled: Yosys does not prefix labels inside
+    // generate blocks): the numbers in flight are consecutive, and the
+    // watched query in a stage carries its tag.
     always_comb begin
-      if (!first_q && probe_v2x[s]) assert (probe_tag2x[s] == {epoch_q, seq2x[s+1]});
+      if (!first_q && v[i]) begin
+        assert (SEQ_BITS'(seq_q[i] + 1'b1) == next[i+1]);
+        if (seq_q[i] == watch_seq) assert (tag[i] == watch_tag);
+      end
     end
   end
   for (genvar k = 0; k < FIFO_DEPTH; k++) begin : g_slot
-    // l_slot (unlabelled: Yosys does not prefix labels inside generate blocks)
-    wire [PW-2:0] idx = (PW - 1)'(k) - probe_rd[PW-2:0];  // position behind the head
+    // l_slot (unlabelled): the watched query in the FIFO carries its tag.
+    wire [AW-1:0] idx = AW'(k) - probe_rd[AW-1:0];  // position behind the head
     always_comb begin
-      if (!first_q && PW'(idx) < fifo_count)
-        assert (probe_fifo[k][TAG_BITS:1] == {epoch_q, out_count_q + SEQ_BITS'(idx)});
+      if (!first_q && SEQ_BITS'(idx) < fifo_count && probe_rd + SEQ_BITS'(idx) == watch_seq)
+        assert (probe_fifo[k][TAG_BITS:1] == watch_tag);
     end
   end
 

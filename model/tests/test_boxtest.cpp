@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -365,11 +365,14 @@ TEST(FloatTests, AgainstExactOnRandomQueries) {
     RecordProperty("random_smits_false_hits", static_cast<int>(e.smits_fh));
     RecordProperty("random_pluecker_false_misses", static_cast<int>(e.pl_fm));
     RecordProperty("random_pluecker_false_hits", static_cast<int>(e.pl_fh));
-    // Not zero by design, but on ordinary queries float errors are rare; a
-    // large count means a broken test, not rounding.
+    // The counts are deterministic: seeded queries and IEEE float arithmetic
+    // without contraction (-ffp-contract=off, model/core/CMakeLists.txt)
+    // give the same answers on every run. On these ordinary queries both
+    // float tests agree with the exact test everywhere (measured: 0 of
+    // 200,000), so any error here is a change of a float test, not rounding.
     EXPECT_GT(e.hits, e.n / 5);
-    EXPECT_LT(e.smits_fm + e.smits_fh, e.n / 1000);
-    EXPECT_LT(e.pl_fm + e.pl_fh, e.n / 1000);
+    EXPECT_EQ(e.smits_fm + e.smits_fh, 0u);
+    EXPECT_EQ(e.pl_fm + e.pl_fh, 0u);
 }
 
 TEST(FloatTests, AgainstExactOnExtremeFamilies) {
@@ -392,6 +395,34 @@ TEST(FloatTests, AgainstExactOnExtremeFamilies) {
     }
     print_row("total", total);
     std::fflush(stdout);
+    // Per family, the errors measured on these queries (deterministic, as
+    // above) are the ceiling: a change of a float test that errs more often
+    // in any family fails here (one that errs less should lower the table).
+    // On these queries pluecker-cls misses no real hit; smits-mul-cls misses
+    // most often exact edge and corner hits, flat and tiny boxes.
+    struct Ceiling {
+        const char* family;
+        std::size_t smits_fm, smits_fh, pl_fm, pl_fh;
+    };
+    constexpr Ceiling kCeiling[] = {
+        {"axis-parallel", 0, 0, 0, 0},      {"near-axis", 0, 53, 0, 34},        {"signed-zero", 27, 0, 0, 1},
+        {"edge-exact", 255, 0, 0, 0},       {"edge-ulp", 165, 207, 0, 204},     {"corner-exact", 648, 0, 0, 0},
+        {"corner-ulp", 346, 385, 0, 423},   {"flat-box", 1029, 167, 0, 176},    {"origin-on-box", 0, 0, 0, 2},
+        {"segment-end", 0, 230, 0, 605},    {"unit-coords", 54, 384, 0, 437},   {"denormal-dir", 50, 0, 0, 0},
+        {"tiny-dir", 81, 413, 0, 528},      {"huge-dir", 22, 540, 0, 567},      {"tiny-box", 480, 1373, 0, 1564},
+        {"zero-length", 0, 0, 0, 0},
+    };
+    ASSERT_EQ(std::size(kCeiling), per.size());
+    for (std::size_t f = 0; f < per.size(); ++f) {
+        const Ceiling& c = kCeiling[f];
+        ASSERT_STREQ(c.family, extreme_family_name(f));
+        EXPECT_LE(per[f].smits_fm, c.smits_fm) << c.family;
+        EXPECT_LE(per[f].smits_fh, c.smits_fh) << c.family;
+        EXPECT_LE(per[f].pl_fm, c.pl_fm) << c.family;
+        EXPECT_LE(per[f].pl_fh, c.pl_fh) << c.family;
+        EXPECT_GT(per[f].hits, 0u) << c.family;
+        EXPECT_LT(per[f].hits, per[f].n) << c.family;
+    }
     // Exact axis-parallel rays are within reach of float arithmetic once the
     // 0*inf case is handled: smits must get every unbounded one right.
     Errors axis;
@@ -399,31 +430,6 @@ TEST(FloatTests, AgainstExactOnExtremeFamilies) {
         if (fam[i] == 0 && std::isinf(qs[i].ray.tmax)) axis.add(qs[i]);
     EXPECT_EQ(axis.smits_fm + axis.smits_fh, 0u);
     EXPECT_EQ(axis.pl_fm + axis.pl_fh, 0u);
-}
-
-// ---------------------------------------------------------------------------
-// Throughput of the exact test (printed; a loose floor so that an
-// accidental slow path everywhere is noticed even on a loaded machine).
-// ---------------------------------------------------------------------------
-
-double exact_rate(const std::vector<Query>& qs, std::size_t* hits) {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::size_t h = 0;
-    for (const Query& q : qs) h += exact(q);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    *hits = h;
-    return double(qs.size()) / s;
-}
-
-TEST(ExactHit, Throughput) {
-    std::size_t hits = 0;
-    const double r = exact_rate(random_queries(0x7e570001, 500000), &hits);
-    const double x = exact_rate(extreme_queries(0x7e570002, 160000), &hits);
-    std::printf("exact_hit throughput: %.0f queries/s (random), %.0f queries/s (extreme families)\n", r, x);
-    std::fflush(stdout);
-    RecordProperty("exact_random_queries_per_s", static_cast<int>(r));
-    RecordProperty("exact_extreme_queries_per_s", static_cast<int>(x));
-    EXPECT_GT(r, 100000.0);
 }
 
 }  // namespace

@@ -98,6 +98,37 @@ TEST(FixedSetup, SegmentEndOutOfRangeFallsBackToUnboundedRay) {
     EXPECT_EQ(q.end[0], 1 << 13);  // 0.5 * 2^(16-2)
 }
 
+// The segment end is rounded outward along the ray in conservative mode
+// (fixed.hpp, set-up E_i and proof step 5): ceil on positive axes, floor on
+// negative ones; to nearest in nearest mode. Rounding to nearest would also
+// keep every real hit (step 5), so only the values can tell the choice: they
+// are pinned here.
+TEST(FixedSetup, SegmentEndRoundsOutward) {
+    Ray r;
+    r.o = Vec3(0.0f);
+    r.d = Vec3(1.0f, -1.0f, 0.5f);  // class 2: y negative
+    r.tmax = 0.1f;                  // end (6.4, -6.4, 3.2) LSB at 8 bits (LSB 1/64), a little more
+    const FixedRay c = setup_ray(r, format(8, 8));
+    ASSERT_TRUE(c.has_end);
+    EXPECT_EQ(c.cls, 2u);
+    EXPECT_EQ(c.end[0], 7);   // ceil(6.4)
+    EXPECT_EQ(c.end[1], -7);  // floor(-6.4)
+    EXPECT_EQ(c.end[2], 4);   // ceil(3.2)
+    const FixedRay n = setup_ray(r, format(8, 8, FixedMode::Nearest));
+    ASSERT_TRUE(n.has_end);
+    EXPECT_EQ(n.end[0], 6);
+    EXPECT_EQ(n.end[1], -6);
+    EXPECT_EQ(n.end[2], 3);
+    // On the grid: exact in both modes (tmax = 0.125: 8, -8, 4 LSB).
+    r.tmax = 0.125f;
+    for (const FixedMode m : {FixedMode::Conservative, FixedMode::Nearest}) {
+        const FixedRay e = setup_ray(r, format(8, 8, m));
+        EXPECT_EQ(e.end[0], 8);
+        EXPECT_EQ(e.end[1], -8);
+        EXPECT_EQ(e.end[2], 4);
+    }
+}
+
 TEST(FixedSetup, BoxRoundsOutwardInConservativeMode) {
     const FixedFormat f = format(8, 8);  // LSB 1/64
     Box b;

@@ -35,6 +35,7 @@
 // 6/8 on a second lattice (off-grid box planes, non-dyadic directions,
 // segments).
 #include "pluecker/boxtest.hpp"
+#include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/querygen.hpp"
 
@@ -50,6 +51,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -549,6 +551,66 @@ TEST(MarginBound, ExhaustiveSecondDomain) {
     }
     exhaustive_float_domain(7, 6, true);
     exhaustive_float_domain(6, 8, true);
+}
+
+// ---------------------------------------------------------------------------
+// querygen's boundary_queries (the cocotb bench's and the harness's boundary
+// operands) sit on the boundary each claims, and reach every value of it.
+// ---------------------------------------------------------------------------
+TEST(MarginBound, BoundaryQueriesSitOnTheBound) {
+    for (const auto& [c, d] : {std::pair{6, 6}, std::pair{8, 8}, std::pair{7, 22}, std::pair{16, 16},
+                               std::pair{24, 24}}) {
+        for (const FixedMode m : {FixedMode::Conservative, FixedMode::Nearest}) {
+            const FixedFormat f = format(c, d, m);
+            const bool cons = m == FixedMode::Conservative;
+            const std::string where = std::to_string(c) + "/" + std::to_string(d) + " " + mode_name(m);
+            std::vector<std::size_t> kinds;
+            const auto qs = boundary_queries(77, 3000, f, &kinds);
+            ASSERT_EQ(qs.size(), 3000u);
+            ASSERT_EQ(kinds.size(), qs.size());
+            std::map<std::string, std::array<std::size_t, 2>> answers;  // per kind: misses, hits
+            std::set<i64> values;
+            for (std::size_t n = 0; n < qs.size(); ++n) {
+                const FixedQuery& q = qs[n];
+                ASSERT_EQ(kinds[n], n % boundary_kind_count());
+                ASSERT_NO_THROW(pack_query(q.ray, q.box, f)) << where << " " << n;
+                const std::string kind = boundary_kind_name(kinds[n]);
+                const Terms t = terms(q.ray, q.box);
+                const bool hit = fixed_hit(q.ray, q.box, f);
+                ++answers[kind][hit];
+                i64 min_b = std::numeric_limits<i64>::max(), min_g = min_b;
+                for (int a = 0; a < 3; ++a) {
+                    const bool neg = class_negative(q.ray.cls, a);
+                    min_b = std::min(min_b, neg ? q.ray.org[a] - q.box.lo[a] : q.box.hi[a] - q.ray.org[a]);
+                    min_g = std::min(min_g, neg ? q.box.hi[a] - q.ray.end[a] : q.ray.end[a] - q.box.lo[a]);
+                }
+                if (kind == "edge") {
+                    ASSERT_TRUE(t.origin_ok && !q.ray.has_end) << where << " " << n;
+                    // One edge test on the boundary: -2..1 (conservative), -1..1.
+                    bool on = false;
+                    for (int k = 0; k < 6; ++k) {
+                        const i64 v = cons ? slack(t, k) : t.T[k];
+                        if (v >= (cons ? -2 : -1) && v <= 1) {
+                            on = true;
+                            values.insert(v);
+                        }
+                    }
+                    ASSERT_TRUE(on) << where << " " << n;
+                } else if (kind == "end") {
+                    ASSERT_TRUE(q.ray.has_end && t.origin_ok) << where << " " << n;
+                    ASSERT_TRUE(min_g >= -1 && min_g <= 1) << where << " " << n;
+                } else {
+                    ASSERT_EQ(kind, "origin");
+                    ASSERT_TRUE(min_b >= -1 && min_b <= 1) << where << " " << n;
+                }
+            }
+            EXPECT_EQ(values.size(), cons ? 4u : 3u) << where;
+            for (const auto& [kind, a] : answers) {
+                EXPECT_GT(a[0], 50u) << where << " " << kind << ": misses";
+                EXPECT_GT(a[1], 50u) << where << " " << kind << ": hits";
+            }
+        }
+    }
 }
 
 }  // namespace

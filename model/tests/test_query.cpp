@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The query text format (read/write/validate) and the query generators.
+#include "pluecker/app/operand_file.hpp"
 #include "pluecker/boxtest.hpp"
+#include "pluecker/contract.hpp"
 #include "pluecker/query.hpp"
 #include "pluecker/querygen.hpp"
 
@@ -11,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -317,6 +320,91 @@ TEST(QueryGen, FamilyContents) {
             ASSERT_LT(mn, std::numeric_limits<float>::min()) << i;
         }
     }
+}
+
+// ---------------------------------------------------------------------------
+// Datapath operands: the full port ranges, and the operand file
+// ---------------------------------------------------------------------------
+
+bool same(const FixedQuery& a, const FixedQuery& b) {
+    return a.ray.cls == b.ray.cls && a.ray.org == b.ray.org && a.ray.dir == b.ray.dir && a.ray.end == b.ray.end &&
+           a.ray.has_end == b.ray.has_end && a.box.lo == b.box.lo && a.box.hi == b.box.hi;
+}
+
+TEST(QueryGen, PortRangeOperandsCoverThePorts) {
+    for (const auto& [c, d] : {std::pair{6, 6}, std::pair{16, 16}, std::pair{7, 22}, std::pair{24, 24}}) {
+        FixedFormat f;
+        f.coord_bits = c;
+        f.dir_bits = d;
+        const auto qs = port_range_queries(3, 6000, f), again = port_range_queries(3, 6000, f);
+        ASSERT_EQ(qs.size(), 6000u);
+        const std::int64_t dmax = (std::int64_t{1} << d) - 1;
+        std::set<int> classes;
+        std::size_t inverted = 0, past_one = 0, ends = 0, coord_min = 0, coord_max = 0, dir_max = 0, hits = 0;
+        for (std::size_t i = 0; i < qs.size(); ++i) {
+            const FixedQuery& q = qs[i];
+            ASSERT_TRUE(same(q, again[i])) << i;
+            ASSERT_NO_THROW(pack_query(q.ray, q.box, f)) << i;  // every operand fits its port
+            classes.insert(q.ray.cls);
+            ends += q.ray.has_end;
+            hits += fixed_hit(q.ray, q.box, f);
+            for (int a = 0; a < 3; ++a) {
+                inverted += q.box.lo[a] > q.box.hi[a];
+                past_one += q.ray.dir[a] > f.dir_one();
+                dir_max += q.ray.dir[a] == dmax;
+                coord_min += q.box.lo[a] == f.coord_min() || q.ray.org[a] == f.coord_min();
+                coord_max += q.box.hi[a] == f.coord_max() || q.ray.org[a] == f.coord_max();
+            }
+        }
+        EXPECT_EQ(classes.size(), 8u);
+        EXPECT_GT(inverted, 100u);
+        EXPECT_GT(past_one, 1000u);
+        EXPECT_GT(dir_max, 100u);
+        EXPECT_GT(coord_min, 100u);
+        EXPECT_GT(coord_max, 100u);
+        EXPECT_GT(ends, 2000u);
+        EXPECT_LT(ends, 4000u);
+        EXPECT_GT(hits, 100u) << c << "/" << d;
+    }
+    FixedFormat bad;
+    bad.coord_bits = 5;
+    EXPECT_THROW(port_range_queries(1, 1, bad), InputError);
+}
+
+TEST(OperandFile, RoundTripAndHeader) {
+    FixedFormat f;
+    f.coord_bits = 9;
+    f.dir_bits = 15;
+    f.mode = FixedMode::Nearest;
+    const auto qs = boundary_queries(11, 500, f);
+    const std::string path = ::testing::TempDir() + "operands_roundtrip.txt";
+    {
+        std::ofstream out(path);
+        out << "# a comment\n\n";
+        app::write_operand_header(out, f);
+        for (const FixedQuery& q : qs) app::write_operands(out, q);
+    }
+    EXPECT_TRUE(app::is_operand_file(path));
+    std::vector<std::size_t> lines;
+    const auto back = app::read_operand_file(path, f, lines);
+    ASSERT_EQ(back.size(), qs.size());
+    for (std::size_t i = 0; i < qs.size(); ++i) {
+        ASSERT_TRUE(same(back[i], qs[i])) << i;
+        ASSERT_EQ(lines[i], i + 4);
+    }
+    FixedFormat other = f;
+    other.mode = FixedMode::Conservative;
+    try {
+        app::read_operand_file(path, other, lines);
+        ADD_FAILURE() << "no error for a file of another mode";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(path + ":3: operands for 9 15 nearest, not 9 15 conservative"),
+                  std::string::npos)
+            << e.what();
+    }
+    std::ofstream(path) << kGood;
+    EXPECT_FALSE(app::is_operand_file(path));
+    std::remove(path.c_str());
 }
 
 }  // namespace

@@ -4,8 +4,9 @@ conservative and checks that the RTL agrees with the golden model: a
 hardware-in-the-loop render must be byte-identical to `pluecker render --test
 fixed` (and, with the camera far outside the scene at 23/23 and 24/24, to the
 exact render), query mode --check must find no mismatch on a render trace, on
-random + extreme queries and on the set-up families (rays from anywhere, no
-real hit lost against exact), and bad input must exit 2.
+random + extreme queries, on the set-up families (rays from anywhere, no
+real hit lost against exact) and on operand files of decision-boundary and
+full-port-range operands, and bad input must exit 2.
 
 A second build, 24/24 nearest (wide VlWide ports, no margin), costs another
 Verilator compile; it runs when PLUECKER_SIM_WIDE=1 (`make sim-query
@@ -100,6 +101,22 @@ def test_query_check_generated(sim16, tmp_path):
     assert len(answers) == 40000 and set(answers) == {"0", "1"}
 
 
+@pytest.mark.parametrize("kind", ["boundary", "ports"])
+def test_query_check_operands(sim16, tmp_path, kind):
+    """Datapath operands the float set-up never makes (the cocotb bench's
+    boundary and raw sources, from the same generators): decision
+    boundaries on the margin's bound, the full port ranges."""
+    q = tmp_path / f"{kind}.txt"
+    g = run([sim16, "gen", "--n", "20000", "--kind", kind, "--seed", "5", "--out", q])
+    assert g.returncode == 0, g.stderr
+    assert q.read_text().splitlines()[1] == "operands 16 16 conservative"
+    r = run([sim16, "query", "--check", q])
+    assert r.returncode == 0, r.stderr
+    assert "20000 operand queries, all through the RTL, 0 mismatches" in r.stderr, r.stderr
+    answers = r.stdout.splitlines()
+    assert len(answers) == 20000 and answers.count("1") > 1000 and answers.count("0") > 1000
+
+
 def test_bench_short(sim16):
     r = run([sim16, "bench", "--n", "100000"])
     assert r.returncode == 0, r.stdout + r.stderr
@@ -128,6 +145,30 @@ def test_bad_input(sim16, tmp_path):
     m = run([CLI, "query", "--test", "fixed", bad])
     assert m.returncode == 2
     assert r.stderr.split("error: ", 1)[1] == m.stderr.split("error: ", 1)[1]
+    # Operand files: the header must be the build's, every field an integer
+    # inside its port range.
+    ops = tmp_path / "ops.txt"
+    line = "0 1 2 3 4 5 6 0 0 0 0 -8 -8 -8 8 8 8"
+    cases = [("operands 16 16 conservative\n" + line + " 1\n", "ops.txt:2: more than 17 fields"),
+             ("operands 16 12 conservative\n" + line + "\n", "ops.txt:1: operands for 16 12 conservative, not 16 16"),
+             ("operands 16 16 nearest\n" + line + "\n", "ops.txt:1: operands for 16 16 nearest, not 16 16 "),
+             ("operands 16 16\n" + line + "\n", "ops.txt:1: expected the header 'operands COORD_BITS DIR_BITS MODE'"),
+             ("# c\noperands 16 16 conservative\n8 1 2 3 4 5 6 0 0 0 0 -8 -8 -8 8 8 8\n",
+              "ops.txt:3: field 1 (cls): 8 is outside its port range 0..7"),
+             ("operands 16 16 conservative\n0 32768 2 3 4 5 6 0 0 0 0 -8 -8 -8 8 8 8\n",
+              "ops.txt:2: field 2 (ox): 32768 is outside its port range -32768..32767"),
+             ("operands 16 16 conservative\n0 1 2 3 4 5 65536 0 0 0 0 -8 -8 -8 8 8 8\n",
+              "ops.txt:2: field 7 (dz): 65536 is outside its port range 0..65535"),
+             ("operands 16 16 conservative\n0 1 2 3 4 5 6 2 0 0 0 -8 -8 -8 8 8 8\n",
+              "ops.txt:2: field 8 (end_valid): 2 is outside its port range 0..1"),
+             ("operands 16 16 conservative\n0 1 2 3 4 5 0x6 0 0 0 0 -8 -8 -8 8 8 8\n",
+              "ops.txt:2: field 7 (dz): '0x6' is not an integer"),
+             ("operands 16 16 conservative\n0 1 2 3\n", "ops.txt:2: expected 17 integers, got 4")]
+    for text, message in cases:
+        ops.write_text(text)
+        expect2(["query", ops], message)
+    expect2(["gen", "--kind", "edges", "--out", ops], "'edges' is not one of random, extreme, mixed, setup, "
+            "boundary, ports")
     # Illegal widths stop the build script with status 2.
     env = dict(os.environ, COORD_BITS="5", MODEL_BUILD=str(MODEL_BUILD))
     b = run([ROOT / "scripts" / "venv-exec.sh", ROOT / "sim" / "build.sh"], env=env)

@@ -3,10 +3,12 @@
 #include "commands.hpp"
 
 #include "pluecker/app/names.hpp"
+#include "pluecker/app/render_options.hpp"
 #include "pluecker/app/query_file.hpp"
 
 #include "pluecker/boxtest.hpp"
 #include "pluecker/fixed.hpp"
+#include "pluecker/local.hpp"
 #include "pluecker/query.hpp"
 
 #include <cstdio>
@@ -19,8 +21,9 @@ namespace pluecker::cli {
 namespace {
 
 constexpr const char* kQueryUsage =
-    "usage: pluecker query --test exact|smits|pluecker|fixed\n"
-    "                      [--coord-bits N] [--dir-bits M] [--mode conservative|nearest] FILE\n"
+    "usage: pluecker query --test exact|smits|pluecker|fixed|local\n"
+    "                      [--coord-bits N] [--box-bits K] [--grid-bits G] [--dir-bits M]\n"
+    "                      [--mode conservative|nearest] FILE\n"
     "Reads ray/box queries (13 numbers a line: ox oy oz dx dy dz tmax minx miny minz\n"
     "maxx maxy maxz; '#' comments; FILE '-' is standard input) and prints one line\n"
     "per query: 1 = the segment meets the box, 0 = it does not.\n"
@@ -32,43 +35,63 @@ constexpr const char* kQueryUsage =
     "                    range cube [-2, 2 - 2^(2-N)]^3 is moved exactly onto it; a\n"
     "                    ray that never meets the cube is a miss); box planes must\n"
     "                    lie in [-2, 2 - 2^(2-N)]\n"
+    "  --test local      the bit-exact local-frame datapath: each query's box in the\n"
+    "                    tightest frame of its own (K-bit offsets), the ray set up\n"
+    "                    on the G-bit global grid as the fixed test's (any finite\n"
+    "                    origin) and brought into that frame; box planes must lie\n"
+    "                    in [-2, 2) (exactly: the grid's float range)\n"
     "  --coord-bits N    fixed only: coordinate width, 6..24 (default 16)\n"
-    "  --dir-bits M      fixed only: direction width, 6..24 (default 16)\n"
-    "  --mode MODE       fixed only: conservative (default, never misses) or nearest\n"
+    "  --box-bits K      local only: box offset width, 4..16 (default 8)\n"
+    "  --grid-bits G     local only: global grid width, K+2..48 (default 32)\n"
+    "  --dir-bits M      fixed: direction width, 6..24 (default 16); local: 4..24\n"
+    "                    (default K + 3)\n"
+    "  --mode MODE       fixed and local: conservative (default, never misses) or\n"
+    "                    nearest\n"
     "exit status: 0 ok, 2 bad input or options\n";
 
 }  // namespace
 
 int cmd_query(const std::vector<std::string>& argv) {
-    const Args args(argv, {"test", "coord-bits", "dir-bits", "mode"}, {"help"});
+    const Args args(argv, {"test", "coord-bits", "dir-bits", "mode", "box-bits", "grid-bits"}, {"help"});
     if (args.has("help")) {
         std::fputs(kQueryUsage, stdout);
         return 0;
     }
-    if (!args.has("test")) throw InputError("missing --test (exact, smits, pluecker or fixed)");
+    if (!args.has("test")) throw InputError("missing --test (exact, smits, pluecker, fixed or local)");
     BoxTestKind test;
     try {
         test = parse_box_test(args.get("test", ""));
     } catch (const InputError& e) {
         throw InputError(std::string("option ") + e.what());  // "option --test: ..."
     }
+    const bool fixed = test == BoxTestKind::Fixed, local = test == BoxTestKind::Local;
+    if (args.has("coord-bits") && !fixed) throw InputError("option --coord-bits needs --test fixed");
+    for (const char* opt : {"box-bits", "grid-bits"})
+        if (args.has(opt) && !local) throw InputError(std::string("option --") + opt + " needs --test local");
+    for (const char* opt : {"dir-bits", "mode"})
+        if (args.has(opt) && !fixed && !local)
+            throw InputError(std::string("option --") + opt + " needs --test fixed or local");
+    FixedMode mode = FixedMode::Conservative;
+    if (args.has("mode")) {
+        try {
+            mode = parse_fixed_mode(args.get("mode", ""));
+        } catch (const InputError& e) {
+            throw InputError(std::string("option --mode: ") + e.what());
+        }
+    }
     FixedFormat fmt;
-    if (test == BoxTestKind::Fixed) {
+    LocalFormat lfmt;
+    if (fixed) {
         fmt.coord_bits = static_cast<int>(args.get_int("coord-bits", FixedFormat::kDefaultCoordBits,
                                                        FixedFormat::kMinBits, FixedFormat::kMaxBits));
         fmt.dir_bits = static_cast<int>(
             args.get_int("dir-bits", FixedFormat::kDefaultDirBits, FixedFormat::kMinBits, FixedFormat::kMaxBits));
-        if (args.has("mode")) {
-            try {
-                fmt.mode = parse_fixed_mode(args.get("mode", ""));
-            } catch (const InputError& e) {
-                throw InputError(std::string("option --mode: ") + e.what());
-            }
-        }
+        fmt.mode = mode;
         fmt.validate();
-    } else {
-        for (const char* opt : {"coord-bits", "dir-bits", "mode"})
-            if (args.has(opt)) throw InputError(std::string("option --") + opt + " needs --test fixed");
+    }
+    if (local) {
+        lfmt = app::parse_local_format(args, mode);
+        lfmt.validate();
     }
     if (args.positional().size() != 1)
         throw InputError("expected one query FILE ('-' for standard input), got " +
@@ -91,6 +114,13 @@ int cmd_query(const std::vector<std::string>& argv) {
             case BoxTestKind::Fixed:
                 try {
                     hit = fixed_hit(q.ray, q.box, fmt);
+                } catch (const InputError& e) {
+                    throw InputError(source + ":" + std::to_string(lines[i]) + ": " + e.what());
+                }
+                break;
+            case BoxTestKind::Local:
+                try {
+                    hit = local_hit(q.ray, q.box, lfmt);
                 } catch (const InputError& e) {
                     throw InputError(source + ":" + std::to_string(lines[i]) + ": " + e.what());
                 }

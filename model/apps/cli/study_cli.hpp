@@ -22,7 +22,9 @@ inline constexpr int kStudyDefaultSize = 128;
 
 inline std::set<std::string> study_scene_options() {
     std::set<std::string> o = kSceneOptions;
-    for (const char* f : {"test", "coord-bits", "dir-bits", "mode", "out", "pool"}) o.erase(f);
+    for (const char* f : {"test", "coord-bits", "dir-bits", "mode", "out", "pool", "box-bits", "grid-bits", "frames",
+                          "cells"})
+        o.erase(f);
     return o;
 }
 
@@ -53,6 +55,50 @@ inline std::unique_ptr<SceneSetup> make_study_setup(const Args& a) {
     const ChildOrder o = parse_child_order(a.get("order", "dsa"));
     if (o == ChildOrder::Dist) throw InputError("option --order: the fixed-point path takes fixed or dsa, not dist");
     return make_setup(a);
+}
+
+// --local K-list with --local-dir-bits, --grid-bits, --frames, --cells
+// (empty without --local; the other flags then refused).
+inline std::vector<LocalSpec> parse_local_specs(const Args& a) {
+    std::vector<LocalSpec> out;
+    if (!a.has("local")) {
+        for (const char* f : {"local-dir-bits", "grid-bits", "frames", "cells"})
+            if (a.has(f)) throw InputError(std::string("option --") + f + " needs --local");
+        return out;
+    }
+    const LocalBuildOptions build = app::parse_local_build(a);
+    for (const int k : parse_bit_list(a.get("local", ""), "--local", LocalFormat::kMinBoxBits,
+                                      LocalFormat::kMaxBoxBits)) {
+        LocalSpec sp;
+        sp.format.box_bits = k;
+        sp.format.dir_bits = static_cast<int>(a.get_int("local-dir-bits", std::min(k + 3, LocalFormat::kMaxDirBits),
+                                                        LocalFormat::kMinDirBits, LocalFormat::kMaxDirBits));
+        sp.format.grid_bits = static_cast<int>(a.get_int("grid-bits", sp.format.grid_bits, LocalFormat::kMinBoxBits + 2,
+                                                         LocalFormat::kMaxGridBits));
+        sp.format.validate();
+        sp.build = build;
+        out.push_back(sp);
+    }
+    return out;
+}
+
+inline void print_local_table(const StudyResult& r, std::ostream& os) {
+    if (!r.local_reference) return;
+    char line[256];
+    const auto& ref = r.local_reference->stats.traversal;
+    os << "local frames (reference on the local path: " << ref.box_tests << " box tests)\n"
+       << "  K  D  G   node bits  cons.FM  cons.FHrate  extra box%  extra node%  extra tri%  near.FHrate  "
+          "near.wrong_px\n";
+    for (const LocalStudy& s : r.local) {
+        const auto& t = s.work.stats.traversal;
+        std::snprintf(line, sizeof line, "%3d %2d %2d  %10d  %7llu  %11.6f  %10.3f  %11.3f  %10.3f  %11.6f  %13llu\n",
+                      s.spec.format.box_bits, s.spec.format.dir_bits, s.spec.format.grid_bits, s.node_bits,
+                      static_cast<unsigned long long>(s.conservative.false_misses), s.conservative.false_hit_rate(),
+                      extra_percent(t.box_tests, ref.box_tests), extra_percent(t.node_visits, ref.node_visits),
+                      extra_percent(t.tri_tests, ref.tri_tests), s.nearest.false_hit_rate(),
+                      static_cast<unsigned long long>(s.near.wrong_pixels));
+        os << line;
+    }
 }
 
 inline void print_study_table(const StudyResult& r, std::ostream& os) {

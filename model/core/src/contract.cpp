@@ -3,6 +3,8 @@
 // derived constants, the port encoding of a query and the generated files.
 #include "pluecker/contract.hpp"
 
+#include "grid.hpp"
+
 #include "pluecker/fixed.hpp"
 #include "pluecker/geometry.hpp"
 
@@ -14,7 +16,7 @@ namespace {
 using i64 = std::int64_t;
 using L = ContractLimits;
 
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
+using detail::axis_name;
 
 constexpr MulStyle kStyles[] = {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut};
 

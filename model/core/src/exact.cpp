@@ -91,16 +91,19 @@ int exact_sign_of_sum(const double* p, int n) {
     return mpz_sgn(z.sum);
 }
 
-std::int64_t exact_round_ratio(const double* p, int n, float q) {
-    constexpr double kLimit = 0x1p24;
-    if (n < 1 || n > 3 || !(q > 0.0f)) throw std::logic_error("exact_round_ratio: bad arguments");
+std::int64_t exact_round_ratio(const double* p, int n, float q, int limit_bits) {
+    if (n < 1 || n > 3 || !(q > 0.0f) || limit_bits < 1 || limit_bits > 62)
+        throw std::logic_error("exact_round_ratio: bad arguments");
+    const double limit = std::ldexp(1.0, limit_bits);
     // Fast path: a candidate k from the double quotient, confirmed by exact
-    // signs of sum - (k -+ 1/2) * q. (k -+ 1/2) * q has at most 25 + 24
-    // significant bits, so it is exact in a double and a multiple of 2^-150.
+    // signs of sum - (k -+ 1/2) * q. For |k| < 2^28, (k -+ 1/2) * q has at
+    // most 29 + 24 significant bits, so it is exact in a double and a
+    // multiple of 2^-150; larger quotients take the slow path.
+    constexpr double kFastLimit = 0x1p28;
     double s = 0.0;
     for (int i = 0; i < n; ++i) s += p[i];
     double k = std::nearbyint(s / static_cast<double>(q));
-    for (int step = 0; step < 3 && std::fabs(k) < kLimit; ++step) {
+    for (int step = 0; step < 3 && std::fabs(k) < kFastLimit && std::fabs(k) < limit; ++step) {
         double t[4] = {p[0], n > 1 ? p[1] : 0.0, n > 2 ? p[2] : 0.0, -(k - 0.5) * static_cast<double>(q)};
         const int below = exact_sign_of_sum(t, 4);  // sign of v - (k - 1/2)
         if (below < 0) {
@@ -125,7 +128,7 @@ std::int64_t exact_round_ratio(const double* p, int n, float q) {
     mpz_mul_2exp(z.rem, z.rem, 1);
     const int c = mpz_cmp(z.rem, z.den);  // 2 rem against den
     if (c > 0 || (c == 0 && mpz_odd_p(z.term))) mpz_add_ui(z.term, z.term, 1);
-    if (!mpz_fits_slong_p(z.term) || std::fabs(static_cast<double>(mpz_get_si(z.term))) >= kLimit)
+    if (!mpz_fits_slong_p(z.term) || std::fabs(static_cast<double>(mpz_get_si(z.term))) >= limit)
         throw std::logic_error("exact_round_ratio: quotient out of range");
     return mpz_get_si(z.term);
 }

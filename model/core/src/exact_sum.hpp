@@ -16,8 +16,10 @@ int exact_sign_of_sum(const double* p, int n);
 
 // The integer nearest to (p[0] + ... + p[n-1]) / q, ties to even, exactly;
 // 1 <= n <= 3, every p[k] as for exact_sign_of_sum, q a positive float.
-// The quotient must be below 2^24 in magnitude (the callers' quotients are
-// fixed-point coordinates); std::logic_error otherwise.
-std::int64_t exact_round_ratio(const double* p, int n, float q);
+// The quotient must be below 2^limit_bits in magnitude (the callers'
+// quotients are fixed-point coordinates: 2^24 for the global datapath's
+// widths, up to 2^62 for the local frames' grid); std::logic_error
+// otherwise.
+std::int64_t exact_round_ratio(const double* p, int n, float q, int limit_bits = 24);
 
 }  // namespace pluecker::detail

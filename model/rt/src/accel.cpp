@@ -99,4 +99,8 @@ void Accel::quantize(const FixedFormat& f) {
     quantized = true;
 }
 
+void Accel::localize(const LocalFormat& f, const LocalBuildOptions& o) {
+    local = std::make_unique<const LocalBvh>(build_local_bvh(nodes, f, o));
+}
+
 }  // namespace pluecker

@@ -13,13 +13,31 @@ void SoftwareBoxEngine::test(std::span<const BoxQuery> batch, std::span<std::uin
     for (std::size_t i = 0; i < batch.size(); ++i) hits[i] = fixed_hit(batch[i].ray, batch[i].box, format_) ? 1 : 0;
 }
 
-RayTraversal::RayTraversal(const Accel& a, ChildOrder o) : accel_(&a), order_(o), policy_(a) {
+void SoftwareLocalEngine::test(std::span<const LocalBoxQuery> batch, std::span<std::uint8_t> hits) {
+    for (std::size_t i = 0; i < batch.size(); ++i) hits[i] = local_hit(batch[i].node_ray, batch[i].box, format_) ? 1 : 0;
+}
+
+namespace {
+
+// The Accel holds what the policy reads.
+void check_prepared(const Accel& a, const FixedPolicy*) {
     if (!a.quantized) throw std::logic_error("RayTraversal: the Accel is not quantised");
+}
+void check_prepared(const Accel& a, const LocalPolicy*) {
+    if (!a.local) throw std::logic_error("RayTraversal: the Accel is not localised");
+}
+
+}  // namespace
+
+template <class Policy>
+RayTraversalT<Policy>::RayTraversalT(const Accel& a, ChildOrder o) : accel_(&a), order_(o), policy_(a) {
+    check_prepared(a, static_cast<const Policy*>(nullptr));
     if (o == ChildOrder::Dist) check_combination(BoxTestKind::Fixed, o);
     stack_.reserve(kMaxStack);
 }
 
-void RayTraversal::start(const Ray& r, bool any_hit) {
+template <class Policy>
+void RayTraversalT<Policy>::start(const Ray& r, bool any_hit) {
     any_hit_ = any_hit;
     best_ = Hit{};
     best_.t = r.tmax;
@@ -39,22 +57,21 @@ void RayTraversal::start(const Ray& r, bool any_hit) {
     pending_ = 1;
 }
 
-void RayTraversal::emit(std::uint32_t node, std::size_t slot) {
-    BoxQuery& q = queries_[slot];
-    q.query = Query{state_.ray, accel_->nodes[node].box};
-    q.ray = state_.fr;
-    q.box = accel_->qboxes[node];
-    q.node = node;
+template <class Policy>
+void RayTraversalT<Policy>::emit(std::uint32_t node, std::size_t slot) {
+    queries_[slot] = policy_.batch_query(state_, node);
 }
 
-bool RayTraversal::pop(std::uint32_t& node) {
+template <class Policy>
+bool RayTraversalT<Policy>::pop(std::uint32_t& node) {
     if (stack_.empty()) return false;
     node = stack_.back();
     stack_.pop_back();
     return true;
 }
 
-void RayTraversal::resume(std::span<const std::uint8_t> hits) {
+template <class Policy>
+void RayTraversalT<Policy>::resume(std::span<const std::uint8_t> hits) {
     if (done_ || hits.size() != pending_) throw std::logic_error("RayTraversal::resume: answers do not match");
     stats_.box_tests += pending_;
     std::uint32_t next;
@@ -84,7 +101,8 @@ void RayTraversal::resume(std::span<const std::uint8_t> hits) {
 
 // Visits nodes from `node` on until an interior node needs its children
 // tested (queries emitted) or the traversal ends.
-void RayTraversal::advance(std::uint32_t node) {
+template <class Policy>
+void RayTraversalT<Policy>::advance(std::uint32_t node) {
     const LeafTri* tris = accel_->tris.data();
     for (;;) {
         ++stats_.node_visits;
@@ -119,14 +137,17 @@ void RayTraversal::advance(std::uint32_t node) {
     }
 }
 
-void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
-                 const std::function<bool(BatchRay&)>& next, const std::function<void(const BatchResult&)>& finish,
-                 TraversalStats& st, BatchStats* bs) {
+namespace {
+
+template <class Policy>
+void run_batched_t(const Accel& a, ChildOrder o, BoxEngineT<typename Policy::BatchQuery>& engine, std::size_t pool,
+                   const NextRay& next, const FinishRay& finish, TraversalStats& st, BatchStats* bs) {
+    using Q = typename Policy::BatchQuery;
     if (pool == 0) throw InputError("--pool: must be at least 1");
-    std::vector<RayTraversal> slots(pool, RayTraversal(a, o));
+    std::vector<RayTraversalT<Policy>> slots(pool, RayTraversalT<Policy>(a, o));
     std::vector<std::uint64_t> tags(pool);
     std::vector<bool> busy(pool, false);
-    std::vector<BoxQuery> batch;
+    std::vector<Q> batch;
     std::vector<std::uint8_t> hits;
     batch.reserve(2 * pool);
     hits.reserve(2 * pool);
@@ -166,7 +187,7 @@ void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t po
         batch.clear();
         for (std::size_t i = 0; i < pool; ++i)
             if (busy[i])
-                for (const BoxQuery& q : slots[i].pending()) batch.push_back(q);
+                for (const Q& q : slots[i].pending()) batch.push_back(q);
         hits.assign(batch.size(), 0);
         engine.test(batch, hits);
         if (bs) {
@@ -185,8 +206,9 @@ void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t po
     }
 }
 
-std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
-                               std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
+template <class Engine>
+std::vector<Hit> trace_batched_t(const Accel& a, ChildOrder o, Engine& engine, std::size_t pool,
+                                 std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
     std::vector<Hit> out(rays.size());
     std::size_t next_ray = 0;
     run_batched(
@@ -199,6 +221,29 @@ std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, 
         },
         [&](const BatchResult& r) { out[r.tag] = r.hit; }, st);
     return out;
+}
+
+}  // namespace
+
+template class RayTraversalT<FixedPolicy>;
+template class RayTraversalT<LocalPolicy>;
+
+void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool, const NextRay& next,
+                 const FinishRay& finish, TraversalStats& st, BatchStats* bs) {
+    run_batched_t<FixedPolicy>(a, o, engine, pool, next, finish, st, bs);
+}
+void run_batched(const Accel& a, ChildOrder o, LocalBoxEngine& engine, std::size_t pool, const NextRay& next,
+                 const FinishRay& finish, TraversalStats& st, BatchStats* bs) {
+    run_batched_t<LocalPolicy>(a, o, engine, pool, next, finish, st, bs);
+}
+
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
+    return trace_batched_t(a, o, engine, pool, rays, any_hit, st);
+}
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, LocalBoxEngine& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
+    return trace_batched_t(a, o, engine, pool, rays, any_hit, st);
 }
 
 }  // namespace pluecker

@@ -276,13 +276,21 @@ void check_options(const RenderOptions& o) {
     check_combination(o.test, o.order);
 }
 
-// The fixed path needs the Accel quantised with the format of the options.
+// The fixed path needs the Accel quantised with the format of the options,
+// the local path localised with them.
 void check_quantized(const RenderScene& scene, const RenderOptions& o) {
-    if (o.test != BoxTestKind::Fixed) return;
-    const FixedFormat& a = scene.accel.format;
-    if (!scene.accel.quantized || a.coord_bits != o.fixed.coord_bits || a.dir_bits != o.fixed.dir_bits ||
-        a.mode != o.fixed.mode)
-        throw std::logic_error("render: the Accel is not quantised with the options' fixed-point format");
+    if (o.test == BoxTestKind::Fixed) {
+        const FixedFormat& a = scene.accel.format;
+        if (!scene.accel.quantized || a.coord_bits != o.fixed.coord_bits || a.dir_bits != o.fixed.dir_bits ||
+            a.mode != o.fixed.mode)
+            throw std::logic_error("render: the Accel is not quantised with the options' fixed-point format");
+    }
+    if (o.test == BoxTestKind::Local) {
+        const LocalBvh* l = scene.accel.local.get();
+        if (!l || l->format.box_bits != o.local.box_bits || l->format.dir_bits != o.local.dir_bits ||
+            l->format.grid_bits != o.local.grid_bits || l->format.mode != o.local.mode || !(l->options == o.local_build))
+            throw std::logic_error("render: the Accel is not localised with the options' local format");
+    }
 }
 
 // Traces the whole tree of one pixel with a tracer, breadth first.
@@ -340,6 +348,7 @@ std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, co
                                                const RenderOptions& opts) {
     check_options(opts);
     if (opts.test == BoxTestKind::Fixed) opts.fixed.validate();
+    if (opts.test == BoxTestKind::Local) opts.local.validate();
     auto s = std::make_unique<RenderSetup>();
     s->opts = opts;
     s->build = build.method;
@@ -347,6 +356,7 @@ std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, co
     s->bvh = build_bvh(s->mesh, build);
     s->accel = std::make_unique<Accel>(s->mesh, s->bvh);
     if (opts.test == BoxTestKind::Fixed) s->accel->quantize(opts.fixed);
+    if (opts.test == BoxTestKind::Local) s->accel->localize(opts.local, opts.local_build);
     s->scene = std::make_unique<RenderScene>(s->mesh, *s->accel);
     return s;
 }
@@ -355,6 +365,10 @@ std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, co
 // Render paths
 
 Image render(const RenderScene& scene, const RenderOptions& opts, RenderStats& st) {
+    if (opts.test == BoxTestKind::Local) {
+        SoftwareLocalEngine engine(opts.local);
+        return render_batched(scene, opts, engine, st);
+    }
     if (opts.test != BoxTestKind::Fixed) return render_direct(scene, opts, st);
     SoftwareBoxEngine engine(opts.fixed);
     return render_batched(scene, opts, engine, st);
@@ -400,9 +414,14 @@ Image render_direct(const RenderScene& scene, const RenderOptions& opts, const T
     return img;
 }
 
-Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEngine& engine, RenderStats& st) {
+namespace {
+
+template <class Engine>
+Image render_batched_t(const RenderScene& scene, const RenderOptions& opts, Engine& engine, RenderStats& st,
+                       BoxTestKind test) {
     check_options(opts);
-    if (opts.test != BoxTestKind::Fixed) throw InputError("render_batched: needs --test fixed");
+    if (opts.test != test)
+        throw InputError(std::string("render_batched: this engine needs --test ") + test_name(test));
     check_quantized(scene, opts);
     const auto t0 = std::chrono::steady_clock::now();
     const Shader sh(scene, opts);
@@ -466,6 +485,15 @@ Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEng
     run_batched(scene.accel, opts.order, engine, opts.pool, next, finish, st.traversal, &st.batch);
     st.render_ms += ms_since(t0);
     return img;
+}
+
+}  // namespace
+
+Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEngine& engine, RenderStats& st) {
+    return render_batched_t(scene, opts, engine, st, BoxTestKind::Fixed);
+}
+Image render_batched(const RenderScene& scene, const RenderOptions& opts, LocalBoxEngine& engine, RenderStats& st) {
+    return render_batched_t(scene, opts, engine, st, BoxTestKind::Local);
 }
 
 std::uint64_t trace_render(const RenderScene& scene, const RenderOptions& opts, std::ostream& out, std::uint64_t limit,
@@ -536,10 +564,20 @@ nlohmann::json stats_json(const RenderScene& scene, const Bvh& bvh, BuildMethod 
     j["build_ms"] = bvh.build_ms;
     j["render_ms"] = st.render_ms;
     j["bvh"] = {{"nodes", bvh.nodes.size()}, {"leaves", bvh.leaf_count()}, {"depth", bvh.depth()}};
-    if (opts.test == BoxTestKind::Fixed) {
-        j["fixed"] = {{"coord_bits", opts.fixed.coord_bits},
-                      {"dir_bits", opts.fixed.dir_bits},
-                      {"mode", mode_name(opts.fixed.mode)}};
+    if (is_batched(opts.test)) {
+        if (opts.test == BoxTestKind::Fixed)
+            j["fixed"] = {{"coord_bits", opts.fixed.coord_bits},
+                          {"dir_bits", opts.fixed.dir_bits},
+                          {"mode", mode_name(opts.fixed.mode)}};
+        else
+            j["local"] = {{"box_bits", opts.local.box_bits},
+                          {"dir_bits", opts.local.dir_bits},
+                          {"grid_bits", opts.local.grid_bits},
+                          {"mode", mode_name(opts.local.mode)},
+                          {"uniform", opts.local_build.uniform},
+                          {"parent_origin", opts.local_build.parent_origin},
+                          {"node_bits", scene.accel.local->memory_bits()},
+                          {"float_node_bits", LocalBvh::kFloatNodeBits}};
         j["batch"] = {{"pool", opts.pool},
                       {"batches", st.batch.batches},
                       {"queries", st.batch.queries},

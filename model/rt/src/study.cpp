@@ -158,6 +158,86 @@ private:
 // Rays in flight for the study's renders: larger batches, same results.
 constexpr std::size_t kStudyPool = 1024;
 
+RenderOptions local_options(const RenderOptions& base, const LocalSpec& spec, FixedMode m) {
+    RenderOptions o = base;
+    o.test = BoxTestKind::Local;
+    o.local = spec.format;
+    o.local.mode = m;
+    o.local.validate();
+    o.local_build = spec.build;
+    o.progress = false;
+    o.pool = std::max(o.pool, kStudyPool);
+    if (o.order == ChildOrder::Dist) check_combination(BoxTestKind::Local, o.order);
+    return o;
+}
+
+// Answers every local query with exact_hit and evaluates every spec, in
+// both modes, on the same query: the node's box and its parent's frame in
+// that spec's hierarchy, the ray set up in that mode (the conservative
+// set-up is the query's own: every spec shares the grid width).
+class LocalReferenceEngine final : public LocalBoxEngine {
+public:
+    LocalReferenceEngine(const Accel& accel, const std::vector<LocalSpec>& specs) {
+        for (const LocalSpec& sp : specs) {
+            Spec s;
+            for (const FixedMode m : {FixedMode::Conservative, FixedMode::Nearest}) {
+                LocalFormat f = sp.format;
+                f.mode = m;
+                s.bvh[m == FixedMode::Nearest] = build_local_bvh(accel.nodes, f, sp.build);
+            }
+            specs_.push_back(std::move(s));
+            LocalStudy ls;
+            ls.spec = sp;
+            ls.node_bits = specs_.back().bvh[0].memory_bits();
+            out.push_back(ls);
+        }
+    }
+    void test(std::span<const LocalBoxQuery> batch, std::span<std::uint8_t> hits) override {
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+            const LocalBoxQuery& q = batch[i];
+            const bool exact = exact_hit(q.query.ray, q.query.box);
+            hits[i] = exact ? 1 : 0;
+            checked.add(exact, exact);
+            std::optional<LocalRay> near_ray;
+            for (std::size_t k = 0; k < specs_.size(); ++k) {
+                const LocalBvh& cons = specs_[k].bvh[0];
+                out[k].conservative.add(exact, local_hit(local_node_ray(q.ray, cons.test_frame(q.node), cons.format),
+                                                         cons.boxes[q.node], cons.format));
+                const LocalBvh& near = specs_[k].bvh[1];
+                if (!near_ray) near_ray = local_setup_ray(q.query.ray, near.format);  // meets the range: q.ray did
+                out[k].nearest.add(exact, local_hit(local_node_ray(*near_ray, near.test_frame(q.node), near.format),
+                                                    near.boxes[q.node], near.format));
+            }
+        }
+    }
+    HitCounts checked;
+    std::vector<LocalStudy> out;
+
+private:
+    struct Spec {
+        LocalBvh bvh[2];  // conservative, nearest
+    };
+    std::vector<Spec> specs_;
+};
+
+// Answers with local_hit (the RTL's answer) and counts the answers that
+// differ from exact_hit.
+class LocalCheckingEngine final : public LocalBoxEngine {
+public:
+    explicit LocalCheckingEngine(const LocalFormat& f) : format_(f) {}
+    void test(std::span<const LocalBoxQuery> batch, std::span<std::uint8_t> hits) override {
+        for (std::size_t i = 0; i < batch.size(); ++i) {
+            const bool h = local_hit(batch[i].node_ray, batch[i].box, format_);
+            hits[i] = h ? 1 : 0;
+            checked.add(exact_hit(batch[i].query.ray, batch[i].query.box), h);
+        }
+    }
+    HitCounts checked;
+
+private:
+    LocalFormat format_;
+};
+
 }  // namespace
 
 ReferenceRun run_reference(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
@@ -189,6 +269,41 @@ FixedRun run_fixed(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts, 
     accel.quantize(o.fixed);
     const RenderScene scene(mesh, accel);
     CheckingEngine engine(o.fixed);
+    FixedRun r;
+    r.image = render_batched(scene, o, engine, r.figures.stats);
+    r.figures.checked = engine.checked;
+    if (reference) r.figures.wrong_pixels = wrong_pixels(r.image, *reference);
+    return r;
+}
+
+LocalReferenceRun run_local_reference(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
+                                      const std::vector<LocalSpec>& specs) {
+    if (specs.empty()) throw InputError("local frames: no configuration given");
+    for (const LocalSpec& sp : specs)
+        if (sp.format.grid_bits != specs.front().format.grid_bits)
+            throw InputError("local frames: every configuration of a study needs the same --grid-bits");
+    // The engine answers on the float query; the first spec's hierarchy
+    // only drives the traversal (its ray set-up decides which rays meet the
+    // grid's range, the same for every spec).
+    const RenderOptions o = local_options(opts, specs.front(), FixedMode::Conservative);
+    Accel accel(mesh, bvh);
+    accel.localize(o.local, o.local_build);
+    const RenderScene scene(mesh, accel);
+    LocalReferenceEngine engine(accel, specs);
+    LocalReferenceRun r;
+    r.image = render_batched(scene, o, engine, r.figures.stats);
+    r.figures.checked = engine.checked;
+    r.specs = std::move(engine.out);
+    return r;
+}
+
+FixedRun run_local(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts, const LocalSpec& spec,
+                   FixedMode mode, const Image* reference) {
+    const RenderOptions o = local_options(opts, spec, mode);
+    Accel accel(mesh, bvh);
+    accel.localize(o.local, o.local_build);
+    const RenderScene scene(mesh, accel);
+    LocalCheckingEngine engine(o.local);
     FixedRun r;
     r.image = render_batched(scene, o, engine, r.figures.stats);
     r.figures.checked = engine.checked;
@@ -300,7 +415,46 @@ StudyResult run_study(const Mesh& mesh, const Bvh& bvh, const StudyOptions& opts
                     " false misses");
             });
     }
+    const std::size_t nl = opts.local.size();
+    std::vector<Image> local_img(nl), local_near_img(nl);
+    Image local_ref_img;
+    if (nl) {
+        res.local.resize(nl);
+        tasks.push_back([&] {
+            LocalReferenceRun r = run_local_reference(mesh, bvh, opts.render, opts.local);
+            local_ref_img = std::move(r.image);
+            res.local_reference = r.figures;
+            for (std::size_t k = 0; k < nl; ++k) {
+                res.local[k].spec = r.specs[k].spec;
+                res.local[k].node_bits = r.specs[k].node_bits;
+                res.local[k].conservative = r.specs[k].conservative;
+                res.local[k].nearest = r.specs[k].nearest;
+            }
+            say("local reference (exact answers): " + std::to_string(r.figures.stats.traversal.box_tests) +
+                " box tests, per-query figures of " + std::to_string(nl) + " local configurations");
+        });
+        for (std::size_t k = 0; k < nl; ++k) {
+            tasks.push_back([&, k] {
+                FixedRun r = run_local(mesh, bvh, opts.render, opts.local[k], FixedMode::Conservative, nullptr);
+                local_img[k] = std::move(r.image);
+                res.local[k].work = r.figures;
+                say("local K=" + std::to_string(opts.local[k].format.box_bits) + " conservative: " +
+                    std::to_string(r.figures.stats.traversal.box_tests) + " box tests");
+            });
+            tasks.push_back([&, k] {
+                FixedRun r = run_local(mesh, bvh, opts.render, opts.local[k], FixedMode::Nearest, nullptr);
+                local_near_img[k] = std::move(r.image);
+                res.local[k].near = r.figures;
+                say("local K=" + std::to_string(opts.local[k].format.box_bits) + " nearest: " +
+                    std::to_string(r.figures.checked.false_misses) + " false misses");
+            });
+        }
+    }
     run_tasks(tasks, threads);
+    for (std::size_t k = 0; k < nl; ++k) {
+        res.local[k].work.wrong_pixels = wrong_pixels(local_img[k], local_ref_img);
+        res.local[k].near.wrong_pixels = wrong_pixels(local_near_img[k], local_ref_img);
+    }
     // Images against the reference.
     if (res.direct_exact) res.direct_exact->wrong_pixels = wrong_pixels(direct_img, ref_img);
     for (std::size_t k = 0; k < work_img.size(); ++k) res.work[k].wrong_pixels = wrong_pixels(work_img[k], ref_img);
@@ -392,6 +546,9 @@ const char* kDefinitions[][2] = {
     {"wrong_pixels", "pixels whose 8-bit RGB differs in any byte from the reference image"},
     {"queries", "per-query figures on the reference's box queries (rays clipped as the fixed test sees them)"},
     {"checked", "the render's own box queries against exact_hit"},
+    {"local", "local frames (local.hpp): each configuration against the local reference, the same batched "
+              "traversal on the local path with exact answers (rays skipped when they miss the local grid's range); "
+              "memory: bits per node of the quantised hierarchy against the float node's 256"},
 };
 
 }  // namespace
@@ -442,6 +599,35 @@ nlohmann::json study_json(const StudyResult& r, const Mesh& mesh, const Bvh& bvh
         widths.push_back(e);
     }
     j["widths"] = widths;
+    if (r.local_reference) {
+        nlohmann::json l;
+        l["grid_bits"] = r.options.local.front().format.grid_bits;
+        l["reference"] = work_json(*r.local_reference, nullptr, pixels);
+        l["float_node_bits"] = LocalBvh::kFloatNodeBits;
+        const double tris = static_cast<double>(mesh.triangles.size());
+        nlohmann::json configs = nlohmann::json::array();
+        for (const LocalStudy& s : r.local) {
+            const LocalFormat& f = s.spec.format;
+            const double nodes = static_cast<double>(bvh.nodes.size());
+            configs.push_back({{"box_bits", f.box_bits},
+                               {"dir_bits", f.dir_bits},
+                               {"grid_bits", f.grid_bits},
+                               {"cells", s.spec.build.uniform ? "uniform" : "axis"},
+                               {"frames", s.spec.build.parent_origin ? "parent" : "own"},
+                               {"node_bits", s.node_bits},
+                               {"memory",
+                                {{"bytes_per_node", s.node_bits / 8.0},
+                                 {"bytes_per_triangle", tris > 0 ? nodes * s.node_bits / 8.0 / tris : 0.0},
+                                 {"float_bytes_per_triangle", tris > 0 ? nodes * 32.0 / tris : 0.0},
+                                 {"fraction_of_float", double(s.node_bits) / LocalBvh::kFloatNodeBits}}},
+                               {"query", {{"conservative", counts_json(s.conservative)},
+                                          {"nearest", counts_json(s.nearest)}}},
+                               {"work", work_json(s.work, &*r.local_reference, pixels)},
+                               {"nearest", work_json(s.near, &*r.local_reference, pixels)}});
+        }
+        l["configs"] = configs;
+        j["local"] = l;
+    }
     return j;
 }
 

@@ -24,6 +24,7 @@ const char* test_name(BoxTestKind t) {
         case BoxTestKind::Smits: return "smits";
         case BoxTestKind::Pluecker: return "pluecker";
         case BoxTestKind::Fixed: return "fixed";
+        case BoxTestKind::Local: return "local";
     }
     return "?";
 }
@@ -66,6 +67,40 @@ void FixedPolicy::shrink(State& st, float t) const {
     if (!(t < st.ray.tmax)) return;
     st.ray.tmax = t;
     fixed_setup_end(st.fr, st.ray, accel->format);
+}
+
+// ---------------------------------------------------------------------------
+// Local policy
+
+LocalPolicy::LocalPolicy(const Accel& a) : accel(&a) {
+    if (!a.local) throw std::logic_error("LocalPolicy: the local test needs Accel::localize first");
+}
+
+LocalPolicy::State LocalPolicy::setup(const Ray& r) const {
+    State st;
+    const std::optional<LocalRay> lr = local_setup_ray(r, accel->local->format);
+    if (!lr) return st;
+    st.ray = r;
+    st.lr = *lr;
+    st.live = true;
+    return st;
+}
+
+void LocalPolicy::shrink(State& st, float t) const {
+    if (!(t < st.ray.tmax)) return;
+    st.ray.tmax = t;
+    local_setup_end(st.lr, st.ray, accel->local->format);
+    st.frame_key = kNoKey;  // the node ray's end changed
+}
+
+const LocalNodeRay& LocalPolicy::node_ray(const State& st, std::uint32_t node) const {
+    const LocalBvh& q = *accel->local;
+    const std::uint32_t key = q.parent[node];  // kNoParent for the root
+    if (st.frame_key != key) {
+        st.nr = local_node_ray(st.lr, q.test_frame(node), q.format);
+        st.frame_key = key;
+    }
+    return st.nr;
 }
 
 // ---------------------------------------------------------------------------
@@ -159,6 +194,7 @@ std::unique_ptr<Tracer> make_tracer(const Accel& a, BoxTestKind t, ChildOrder o,
         case BoxTestKind::Fixed:
             if (!a.quantized) throw std::logic_error("make_tracer: the fixed test needs Accel::quantize first");
             return make_ordered(a, FixedPolicy{a}, o, record);
+        case BoxTestKind::Local: return make_ordered(a, LocalPolicy{a}, o, record);
     }
     throw std::logic_error("make_tracer: unreachable test");
 }

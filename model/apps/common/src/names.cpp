@@ -11,7 +11,8 @@ BoxTestKind parse_box_test(const std::string& s) {
     if (s == "smits") return BoxTestKind::Smits;
     if (s == "pluecker") return BoxTestKind::Pluecker;
     if (s == "fixed") return BoxTestKind::Fixed;
-    throw InputError("--test: '" + s + "' is not one of exact, smits, pluecker, fixed");
+    if (s == "local") return BoxTestKind::Local;
+    throw InputError("--test: '" + s + "' is not one of exact, smits, pluecker, fixed, local");
 }
 
 ChildOrder parse_child_order(const std::string& s) {
@@ -51,13 +52,14 @@ FloatUnit parse_float_unit(const std::string& s) {
 
 namespace {
 
-int parse_bits(const std::string& s, const std::string& flag, const std::string& spec) {
+int parse_bits(const std::string& s, const std::string& flag, const std::string& spec,
+               int lo = FixedFormat::kMinBits, int hi = FixedFormat::kMaxBits) {
     if (s.empty() || s.size() > 3 || s.find_first_not_of("0123456789") != std::string::npos)
         throw InputError(flag + ": '" + s + "' in '" + spec + "' is not a width");
     const int v = std::stoi(s);
-    if (v < FixedFormat::kMinBits || v > FixedFormat::kMaxBits)
-        throw InputError(flag + ": width " + s + " in '" + spec + "' is outside " +
-                         std::to_string(FixedFormat::kMinBits) + ".." + std::to_string(FixedFormat::kMaxBits));
+    if (v < lo || v > hi)
+        throw InputError(flag + ": width " + s + " in '" + spec + "' is outside " + std::to_string(lo) + ".." +
+                         std::to_string(hi));
     return v;
 }
 
@@ -72,26 +74,38 @@ std::vector<std::string> split(const std::string& s, char sep) {
     }
 }
 
+// "A:B[:S]": A, A+S, ..., <= B.
+std::vector<int> parse_range(const std::string& spec, const std::string& flag, int lo, int hi) {
+    const auto parts = split(spec, ':');
+    if (parts.size() < 2 || parts.size() > 3) throw InputError(flag + ": '" + spec + "' is not FIRST:LAST[:STEP]");
+    const int a = parse_bits(parts[0], flag, spec, lo, hi);
+    const int b = parse_bits(parts[1], flag, spec, lo, hi);
+    int step = 1;
+    if (parts.size() == 3) {
+        const std::string& s = parts[2];
+        if (s.empty() || s.size() > 2 || s.find_first_not_of("0123456789") != std::string::npos || std::stoi(s) < 1)
+            throw InputError(flag + ": step '" + s + "' in '" + spec + "' is not a positive integer");
+        step = std::stoi(s);
+    }
+    if (b < a) throw InputError(flag + ": '" + spec + "' has LAST < FIRST");
+    std::vector<int> out;
+    for (int w = a; w <= b; w += step) out.push_back(w);
+    return out;
+}
+
 }  // namespace
+
+std::vector<int> parse_bit_list(const std::string& spec, const std::string& flag, int lo, int hi) {
+    if (spec.find(':') != std::string::npos) return parse_range(spec, flag, lo, hi);
+    std::vector<int> out;
+    for (const std::string& item : split(spec, ',')) out.push_back(parse_bits(item, flag, spec, lo, hi));
+    return out;
+}
 
 std::vector<WidthPair> parse_widths(const std::string& spec, const std::string& flag) {
     std::vector<WidthPair> out;
     if (spec.find(':') != std::string::npos) {
-        const auto parts = split(spec, ':');
-        if (parts.size() < 2 || parts.size() > 3)
-            throw InputError(flag + ": '" + spec + "' is not FIRST:LAST[:STEP]");
-        const int a = parse_bits(parts[0], flag, spec);
-        const int b = parse_bits(parts[1], flag, spec);
-        int step = 1;
-        if (parts.size() == 3) {
-            const std::string& s = parts[2];
-            if (s.empty() || s.size() > 2 || s.find_first_not_of("0123456789") != std::string::npos ||
-                std::stoi(s) < 1)
-                throw InputError(flag + ": step '" + s + "' in '" + spec + "' is not a positive integer");
-            step = std::stoi(s);
-        }
-        if (b < a) throw InputError(flag + ": '" + spec + "' has LAST < FIRST");
-        for (int w = a; w <= b; w += step) out.push_back({w, w});
+        for (const int w : parse_range(spec, flag, FixedFormat::kMinBits, FixedFormat::kMaxBits)) out.push_back({w, w});
         return out;
     }
     for (const std::string& item : split(spec, ',')) {

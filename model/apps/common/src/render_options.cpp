@@ -19,16 +19,20 @@ namespace pluecker::app {
 
 const std::set<std::string> kSceneOptions = {
     "scene", "test",  "order", "build", "size", "width", "height",    "coord-bits", "dir-bits", "mode",
-    "epsilon", "eye", "look",  "up",    "fov",  "max-depth", "lights", "out",      "threads",  "pool"};
+    "epsilon", "eye", "look",  "up",    "fov",  "max-depth", "lights", "out",      "threads",  "pool",
+    "box-bits", "grid-bits", "frames", "cells"};
 
 const char* const kSceneHelp =
     "  --scene S        teapot | spheres | sphere:N | FILE (.obj/.ply)   [teapot]\n"
-    "  --test T         exact | smits | pluecker | fixed                 [pluecker]\n"
+    "  --test T         exact | smits | pluecker | fixed | local         [pluecker]\n"
     "  --order O        fixed | dsa | dist (dist: smits only)            [dsa]\n"
     "  --build B        median | sah                                     [sah]\n"
     "  --size N         image N x N                                      [512]\n"
     "  --width W --height H   override the size per axis\n"
     "  --coord-bits N --dir-bits M --mode conservative|nearest   fixed test only [16 16 conservative]\n"
+    "  --box-bits K --dir-bits D --grid-bits G --mode M   local test (local frames) [8, K+3, 32, conservative]\n"
+    "  --frames parent|own   local: frame origins from the parent's grid or stored per node [parent]\n"
+    "  --cells axis|uniform  local: a power-of-two cell per axis or one for all three [axis]\n"
     "  --epsilon E      BVH box growth                                   [1e-6]\n"
     "  --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   camera (default: per scene)\n"
     "  --lights N       1 or 2 point lights                              [2]\n"
@@ -79,6 +83,41 @@ void check_epsilon_fixed(float epsilon, const FixedFormat& f) {
     }
 }
 
+void check_epsilon_local(float epsilon, const LocalFormat& f) {
+    const Box widest{Vec3(-1.0f - epsilon), Vec3(1.0f + epsilon)};
+    try {
+        (void)local_frame_for(widest, f);
+    } catch (const InputError&) {
+        std::ostringstream os;
+        os << "option --epsilon: " << epsilon << " grows the BVH boxes of the scene (normalised to [-1, 1]) to ["
+           << widest.lo.x << ", " << widest.hi.x << "], outside the range " << f.range_text() << " of --test local";
+        throw InputError(os.str());
+    }
+}
+
+LocalFormat parse_local_format(const Args& a, FixedMode mode) {
+    LocalFormat f;
+    f.box_bits = static_cast<int>(
+        a.get_int("box-bits", f.box_bits, LocalFormat::kMinBoxBits, LocalFormat::kMaxBoxBits));
+    f.dir_bits = static_cast<int>(a.get_int("dir-bits", std::min(f.box_bits + 3, LocalFormat::kMaxDirBits),
+                                            LocalFormat::kMinDirBits, LocalFormat::kMaxDirBits));
+    f.grid_bits = static_cast<int>(a.get_int("grid-bits", f.grid_bits, f.box_bits + 2, LocalFormat::kMaxGridBits));
+    f.mode = mode;
+    return f;
+}
+
+LocalBuildOptions parse_local_build(const Args& a) {
+    LocalBuildOptions o;
+    const std::string frames = a.get("frames", "parent"), cells = a.get("cells", "axis");
+    if (frames != "parent" && frames != "own")
+        throw InputError("option --frames: '" + frames + "' is not one of parent, own");
+    if (cells != "axis" && cells != "uniform")
+        throw InputError("option --cells: '" + cells + "' is not one of axis, uniform");
+    o.parent_origin = frames == "parent";
+    o.uniform = cells == "uniform";
+    return o;
+}
+
 void check_camera(const Camera& c) {
     auto finite = [](const Vec3& x) { return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z); };
     auto nonzero = [](const Vec3& x) { return x.x != 0.0f || x.y != 0.0f || x.z != 0.0f; };
@@ -107,19 +146,30 @@ std::unique_ptr<SceneSetup> make_setup(const Args& a) {
     o.width = static_cast<int>(a.get_int("width", size, 1, 16384));
     o.height = static_cast<int>(a.get_int("height", size, 1, 16384));
     const bool fixed = o.test == BoxTestKind::Fixed;
-    for (const char* f : {"coord-bits", "dir-bits", "mode", "pool"})
-        if (a.has(f) && !fixed) throw InputError(std::string("option --") + f + " needs --test fixed");
-    o.fixed.coord_bits = static_cast<int>(a.get_int("coord-bits", FixedFormat::kDefaultCoordBits,
-                                                    FixedFormat::kMinBits, FixedFormat::kMaxBits));
-    o.fixed.dir_bits = static_cast<int>(
-        a.get_int("dir-bits", FixedFormat::kDefaultDirBits, FixedFormat::kMinBits, FixedFormat::kMaxBits));
-    o.fixed.mode = with_flag("mode", [&] { return parse_fixed_mode(a.get("mode", "conservative")); });
+    const bool local = o.test == BoxTestKind::Local;
+    if (a.has("coord-bits") && !fixed) throw InputError("option --coord-bits needs --test fixed");
+    for (const char* f : {"dir-bits", "mode", "pool"})
+        if (a.has(f) && !fixed && !local) throw InputError(std::string("option --") + f + " needs --test fixed or local");
+    for (const char* f : {"box-bits", "grid-bits", "frames", "cells"})
+        if (a.has(f) && !local) throw InputError(std::string("option --") + f + " needs --test local");
+    const FixedMode mode = with_flag("mode", [&] { return parse_fixed_mode(a.get("mode", "conservative")); });
+    if (local) {
+        o.local = parse_local_format(a, mode);
+        o.local_build = parse_local_build(a);
+    } else {
+        o.fixed.coord_bits = static_cast<int>(a.get_int("coord-bits", FixedFormat::kDefaultCoordBits,
+                                                        FixedFormat::kMinBits, FixedFormat::kMaxBits));
+        o.fixed.dir_bits = static_cast<int>(
+            a.get_int("dir-bits", FixedFormat::kDefaultDirBits, FixedFormat::kMinBits, FixedFormat::kMaxBits));
+        o.fixed.mode = mode;
+    }
     o.threads = static_cast<int>(a.get_int("threads", 1, 1, 1024));
     o.pool = static_cast<std::size_t>(a.get_int("pool", 256, 1, 1 << 20));
     o.max_depth = static_cast<int>(a.get_int("max-depth", 4, 0, 32));
     o.light_count = static_cast<int>(a.get_int("lights", 2, 1, 2));
     bo.epsilon = parse_epsilon(a, bo.epsilon);
     if (fixed) check_epsilon_fixed(bo.epsilon, o.fixed);
+    if (local) check_epsilon_local(bo.epsilon, o.local);
 
     // Camera flags are checked before the (possibly long) build; the
     // defaults they override come from the scene.

@@ -87,8 +87,12 @@
 //   4. Origin test: the exit plane lies on the grid and rounding to nearest
 //      is monotone, so b_i >= 0 implies B_i >= 0.
 //   5. End test: a real hit has t_enter <= tmax, i.e. the exact end point is
-//      past every entry plane; rounding E outward along the ray keeps it
-//      there (and has_end = false drops the test).
+//      past every entry plane, which lies on the grid; rounding E outward
+//      along the ray keeps it there (and has_end = false drops the test).
+//      Rounding to nearest would keep it there too (monotone onto a grid
+//      plane, as in step 4); outward is the choice made, so that the
+//      quantised segment, like the quantised box, contains the real one
+//      whatever the grid: FixedSetup.SegmentEndRoundsOutward pins it.
 //   6. The clip. Steps 1-5 use only that O lies within half an LSB of an
 //      exact point of the ray's line from which the segment still reaches
 //      every hit: the exact origin need not be a float. Every box of the

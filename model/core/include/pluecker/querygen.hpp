@@ -6,9 +6,12 @@
 // std:: distributions). Every query is valid (validate_query accepts it).
 // random_queries and extreme_queries keep every origin and box plane in
 // [-1, 1]; setup_queries sends rays from anywhere into boxes of one
-// fixed-point range.
+// fixed-point range. port_range_queries and boundary_queries make operands
+// of the datapath itself (FixedRay, FixedBox), which no float query set-up
+// produces.
 #pragma once
 
+#include "pluecker/fixed.hpp"
 #include "pluecker/geometry.hpp"
 
 #include <cstddef>
@@ -56,5 +59,36 @@ std::vector<Query> setup_queries(std::uint64_t seed, std::size_t n, int coord_bi
                                  std::vector<std::size_t>* families = nullptr);
 std::size_t setup_family_count();
 const char* setup_family_name(std::size_t i);
+
+// One query as the datapath's ports take it.
+struct FixedQuery {
+    FixedRay ray;
+    FixedBox box;
+};
+
+// Operands drawn straight from the port ranges of f: any C-bit
+// coordinates (corner values -2^(C-1), -2^(C-1)+1, -1, 0, 1, 2^(C-1)-2,
+// 2^(C-1)-1 often), any D-bit direction up to 2^D - 1 (beyond the set-up's
+// 2^(D-1)), boxes with LO > HI on some axes, any class, segment ends or
+// none. Checks that no intermediate of the RTL overflows. InputError for a
+// bad format.
+std::vector<FixedQuery> port_range_queries(std::uint64_t seed, std::size_t n, const FixedFormat& f);
+
+// Operands placed exactly on a decision boundary of one test of the
+// datapath (fixed.hpp), every other test passing with room, so that an
+// off-by-one anywhere (a margin term, >= against >, an end rounding) flips
+// the answer. Query k is of kind k % boundary_kind_count():
+//   edge (three in five)  one edge test at 2*T_ij + M_ij in {-2, -1, 0, 1}
+//                         (conservative: on the margin's bound) or T_ij in
+//                         {-1, 0, 1} (nearest)
+//   end                   one G_i in {-1, 0, 1}
+//   origin                one B_i in {-1, 0, 1}
+// Only operands are chosen here; the answer is fixed_hit's. When `kinds`
+// is given it receives the kind of every query (boundary_kind_name).
+// InputError for a bad format.
+std::vector<FixedQuery> boundary_queries(std::uint64_t seed, std::size_t n, const FixedFormat& f,
+                                         std::vector<std::size_t>* kinds = nullptr);
+std::size_t boundary_kind_count();
+const char* boundary_kind_name(std::size_t i);
 
 }  // namespace pluecker

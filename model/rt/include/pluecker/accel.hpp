@@ -6,6 +6,7 @@
 
 #include "pluecker/bvh.hpp"
 #include "pluecker/fixed.hpp"
+#include "pluecker/local_bvh.hpp"
 #include "pluecker/mesh.hpp"
 #include "pluecker/triangle.hpp"
 
@@ -79,6 +80,11 @@ struct Accel {
     bool quantized = false;
     FixedFormat format;
     std::vector<FixedBox> qboxes;
+
+    // The local frames' hierarchy of the same tree (build_local_bvh), for
+    // the local test; empty until localize().
+    void localize(const LocalFormat& f, const LocalBuildOptions& o);
+    std::unique_ptr<const LocalBvh> local;
 };
 
 }  // namespace pluecker

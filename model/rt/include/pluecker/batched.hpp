@@ -22,28 +22,25 @@ namespace pluecker {
 // then the two child boxes of each interior node it enters), waits for their
 // answers, and continues. A driver keeps many rays in flight, gathers their
 // queries into one batch and hands the batch to a BoxEngine: the software
-// engine calls fixed_hit, the Verilator harness in sim/ sends the same
-// queries through the RTL. Given the same answers, the batched traversal
-// issues the same queries per ray, visits the same nodes and returns the
-// same hit as traverse<FixedPolicy, ...>.
+// engine calls fixed_hit (or local_hit), the Verilator harness in sim/
+// sends the same queries through the RTL. Given the same answers, the
+// batched traversal issues the same queries per ray, visits the same nodes
+// and returns the same hit as traverse<FixedPolicy, ...> (or LocalPolicy).
 
-// One ray/box query as the RTL takes it, plus its float form.
-struct BoxQuery {
-    Query query;         // the ray as given (tmax as the test sees it) and the node's float box
-    FixedRay ray;        // *fixed_setup_ray(query.ray, format)
-    FixedBox box;        // fixed_quantize_box(query.box, format)
-    std::uint32_t node;  // BVH node index of the box
-};
-
-class BoxEngine {
+// The engines: one per query type of a policy (policies.hpp): BoxQuery
+// for the global fixed-point datapath, LocalBoxQuery for the local frames.
+template <class Q>
+class BoxEngineT {
 public:
-    virtual ~BoxEngine() = default;
+    virtual ~BoxEngineT() = default;
     // Answers a whole batch: hits[i] = 1 when batch[i] hits, else 0.
     // hits.size() == batch.size() >= 1.
-    virtual void test(std::span<const BoxQuery> batch, std::span<std::uint8_t> hits) = 0;
+    virtual void test(std::span<const Q> batch, std::span<std::uint8_t> hits) = 0;
 };
+using BoxEngine = BoxEngineT<BoxQuery>;
+using LocalBoxEngine = BoxEngineT<LocalBoxQuery>;
 
-// The software engine: fixed_hit on every query.
+// The software engines: fixed_hit / local_hit on every query.
 class SoftwareBoxEngine final : public BoxEngine {
 public:
     explicit SoftwareBoxEngine(const FixedFormat& f) : format_(f) {}
@@ -52,16 +49,27 @@ public:
 private:
     FixedFormat format_;
 };
-
-// One ray's resumable traversal. The Accel must be quantised.
-class RayTraversal {
+class SoftwareLocalEngine final : public LocalBoxEngine {
 public:
-    RayTraversal(const Accel& a, ChildOrder o);  // o: fixed or dsa
+    explicit SoftwareLocalEngine(const LocalFormat& f) : format_(f) {}
+    void test(std::span<const LocalBoxQuery> batch, std::span<std::uint8_t> hits) override;
+
+private:
+    LocalFormat format_;
+};
+
+// One ray's resumable traversal with the box test of Policy (FixedPolicy:
+// the Accel must be quantised; LocalPolicy: localised).
+template <class Policy>
+class RayTraversalT {
+public:
+    using BatchQuery = typename Policy::BatchQuery;
+    RayTraversalT(const Accel& a, ChildOrder o);  // o: fixed or dsa
     // Starts a ray; afterwards either done() or pending() is non-empty.
     void start(const Ray& r, bool any_hit);
     bool done() const { return done_; }
     // The queries awaiting answers (1 for the root, 2 for a node's children).
-    std::span<const BoxQuery> pending() const { return {queries_.data(), done_ ? 0u : pending_}; }
+    std::span<const BatchQuery> pending() const { return {queries_.data(), done_ ? 0u : pending_}; }
     // Answers to pending(), in order. Tests the triangles of the leaves it
     // reaches and stops at the next interior node or when done.
     void resume(std::span<const std::uint8_t> hits);
@@ -76,8 +84,8 @@ private:
 
     const Accel* accel_;
     ChildOrder order_;
-    FixedPolicy policy_;
-    FixedPolicy::State state_;
+    Policy policy_;
+    typename Policy::State state_;
     TriRay tri_{};
     RayClass cls_ = 0;
     bool any_hit_ = false;
@@ -87,9 +95,11 @@ private:
     std::uint32_t node_ = 0;  // the node whose children are pending
     bool root_pending_ = false;
     std::uint32_t pending_ = 0;
-    std::array<BoxQuery, 2> queries_{};
+    std::array<BatchQuery, 2> queries_{};
     std::vector<std::uint32_t> stack_;
 };
+using RayTraversal = RayTraversalT<FixedPolicy>;
+using LocalRayTraversal = RayTraversalT<LocalPolicy>;
 
 // A ray handed to the driver, and its answer.
 struct BatchRay {
@@ -114,13 +124,20 @@ struct BatchStats {
 // the pending queries of all rays in slot order into one batch per round,
 // calls engine.test once per round, and calls finish() for every ray that
 // completes (in slot order). finish() may make new rays available to next().
-void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
-                 const std::function<bool(BatchRay&)>& next, const std::function<void(const BatchResult&)>& finish,
-                 TraversalStats& st, BatchStats* bs = nullptr);
+// The engine's query type picks the box test: BoxEngine the global
+// fixed-point datapath (Accel quantised), LocalBoxEngine the local frames
+// (Accel localised).
+using NextRay = std::function<bool(BatchRay&)>;
+using FinishRay = std::function<void(const BatchResult&)>;
+void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool, const NextRay& next,
+                 const FinishRay& finish, TraversalStats& st, BatchStats* bs = nullptr);
+void run_batched(const Accel& a, ChildOrder o, LocalBoxEngine& engine, std::size_t pool, const NextRay& next,
+                 const FinishRay& finish, TraversalStats& st, BatchStats* bs = nullptr);
 
 // Convenience: traces a list of rays; result i belongs to rays[i].
 std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
                                std::span<const Ray> rays, bool any_hit, TraversalStats& st);
-
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, LocalBoxEngine& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st);
 
 }  // namespace pluecker

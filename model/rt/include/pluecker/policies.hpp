@@ -7,6 +7,7 @@
 #include "pluecker/box_kernels.hpp"
 #include "pluecker/boxtest.hpp"
 #include "pluecker/fixed.hpp"
+#include "pluecker/local.hpp"
 #include "pluecker/query.hpp"
 
 #include <cstdint>
@@ -96,8 +97,18 @@ struct ExactPolicy {
     Ray query_ray(const State& st) const { return st.ray; }
 };
 
+// One ray/box query of the global fixed-point datapath as the RTL takes
+// it, plus its float form (the batched traversal's unit, batched.hpp).
+struct BoxQuery {
+    Query query;         // the ray as given (tmax as the test sees it) and the node's float box
+    FixedRay ray;        // *fixed_setup_ray(query.ray, format)
+    FixedBox box;        // fixed_quantize_box(query.box, format)
+    std::uint32_t node;  // BVH node index of the box
+};
+
 struct FixedPolicy {
     static constexpr bool kDistance = false;
+    using BatchQuery = BoxQuery;
     explicit FixedPolicy(const Accel& a) : accel(&a) {}
     const Accel* accel;
     struct State {
@@ -113,6 +124,56 @@ struct FixedPolicy {
         return fixed_hit(st.fr, accel->qboxes[node], accel->format);
     }
     Ray query_ray(const State& st) const { return st.ray; }
+    BoxQuery batch_query(const State& st, std::uint32_t node) const {
+        return BoxQuery{Query{st.ray, accel->nodes[node].box}, st.fr, accel->qboxes[node], node};
+    }
+};
+
+// One child query of the local-frame datapath as its RTL takes it (the ray
+// at the global width, the frame of the node's parent and the node's box
+// in that frame), the node ray the unit computes from the first two
+// (local_node_ray, for engines that model the child datapath alone), and
+// the float form.
+struct LocalBoxQuery {
+    Query query;         // the ray as given and the node's float box
+    LocalRay ray;
+    LocalFrame frame;
+    LocalNodeRay node_ray;
+    LocalBox box;
+    std::uint32_t node;
+};
+
+// The local frames (local.hpp) over Accel::local. A node's box is tested
+// in its parent's frame; both children of a node are tested one after the
+// other, so the state keeps the last node ray (what a traversal unit would
+// compute once per node visit).
+struct LocalPolicy {
+    static constexpr bool kDistance = false;
+    using BatchQuery = LocalBoxQuery;
+    explicit LocalPolicy(const Accel& a);
+    const Accel* accel;
+    struct State {
+        Ray ray;  // the ray as given, tmax shrunk to the best hit
+        LocalRay lr;
+        bool live = false;
+        mutable std::uint32_t frame_key = kNoKey;  // whose frame nr is in
+        mutable LocalNodeRay nr;
+    };
+    static constexpr std::uint32_t kNoKey = 0xfffffffeu;
+    State setup(const Ray& r) const;
+    bool live(const State& st) const { return st.live; }
+    void shrink(State& st, float t) const;
+    // The ray in the frame node `node`'s box is tested in.
+    const LocalNodeRay& node_ray(const State& st, std::uint32_t node) const;
+    template <RayClass>
+    bool hit(const State& st, std::uint32_t node, const Box&, float*) const {
+        return local_hit(node_ray(st, node), accel->local->boxes[node], accel->local->format);
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+    LocalBoxQuery batch_query(const State& st, std::uint32_t node) const {
+        return LocalBoxQuery{Query{st.ray, accel->nodes[node].box}, st.lr,   accel->local->test_frame(node),
+                             node_ray(st, node),                      accel->local->boxes[node], node};
+    }
 };
 
 // Wraps a policy and appends every query it answers to *out.

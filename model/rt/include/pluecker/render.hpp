@@ -78,6 +78,8 @@ struct RenderOptions {
     BoxTestKind test = BoxTestKind::Pluecker;
     ChildOrder order = ChildOrder::Dsa;
     FixedFormat fixed;                 // used by the fixed test
+    LocalFormat local;                 // used by the local test
+    LocalBuildOptions local_build;     // its hierarchy
     std::optional<Camera> camera;      // default_camera() when empty
     std::vector<Light> lights;         // default_lights() when empty
     int light_count = 2;               // for default_lights(): 1 or 2
@@ -112,7 +114,8 @@ struct RenderScene {
 // Everything a render needs, built in one call (the CLI and the
 // hardware-in-the-loop harness both start here): the scene from its spec
 // (make_scene), the BVH, the Accel (quantised with opts.fixed when opts.test
-// is fixed) and the shading data. Checks the options (InputError).
+// is fixed, localised with opts.local when it is local) and the shading
+// data. Checks the options (InputError).
 struct RenderSetup {
     Mesh mesh;
     Bvh bvh;
@@ -124,9 +127,10 @@ struct RenderSetup {
 std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, const BuildOptions& build,
                                                const RenderOptions& opts);
 
-// Renders with opts.test: the fixed test goes through render_batched with a
-// SoftwareBoxEngine, the float tests through render_direct. The fixed test
-// needs scene.accel quantised with opts.fixed (std::logic_error otherwise).
+// Renders with opts.test: the fixed and local tests go through
+// render_batched with a software engine, the float tests through
+// render_direct. The fixed test needs scene.accel quantised with opts.fixed,
+// the local test localised with opts.local (std::logic_error otherwise).
 Image render(const RenderScene& scene, const RenderOptions& opts, RenderStats& st);
 
 // Every ray traced at once by the Tracer of opts.test/opts.order, pixels
@@ -140,8 +144,13 @@ Image render_direct(const RenderScene& scene, const RenderOptions& opts, const T
 
 // The hardware-in-the-loop path: rays of all pixels go through run_batched
 // with opts.pool rays in flight; every box test is answered by `engine`.
-// opts.test must be fixed, opts.order fixed or dsa.
+// opts.test must be fixed (BoxEngine) or local (LocalBoxEngine), opts.order
+// fixed or dsa.
 Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEngine& engine, RenderStats& st);
+Image render_batched(const RenderScene& scene, const RenderOptions& opts, LocalBoxEngine& engine, RenderStats& st);
+
+// The batched tests: those with a datapath model (fixed, local).
+inline bool is_batched(BoxTestKind t) { return t == BoxTestKind::Fixed || t == BoxTestKind::Local; }
 
 // Writes (write_query) the box queries of the render's traversal in the
 // order it issues them: single thread, pixels in row order, each pixel's

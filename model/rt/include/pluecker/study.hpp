@@ -113,9 +113,26 @@ struct WorkFigures {
     std::uint64_t wrong_pixels = 0; // against the reference image
 };
 
+// One local-frame configuration of the study (local.hpp): its format (the
+// mode is set per run) and hierarchy options.
+struct LocalSpec {
+    LocalFormat format;
+    LocalBuildOptions build;
+};
+
+// The figures of one local configuration.
+struct LocalStudy {
+    LocalSpec spec;
+    int node_bits = 0;                  // LocalBvh::memory_bits
+    HitCounts conservative, nearest;    // per query, on the local reference's queries
+    WorkFigures work;                   // conservative render
+    WorkFigures near;                   // nearest render
+};
+
 struct StudyOptions {
     RenderOptions render;               // size, order, camera, lights; test/fixed are set per run
     std::vector<WidthPair> widths;      // at least one
+    std::vector<LocalSpec> local;       // local-frame configurations (one grid width for all)
     bool per_query = true;              // 1a
     bool work = true;                   // 1b
     bool nearest = true;                // 1c
@@ -134,6 +151,10 @@ struct StudyResult {
     std::vector<WidthQueries> queries;  // per width (empty without per_query)
     std::vector<WorkFigures> work;      // per width, conservative (empty without work)
     std::vector<WorkFigures> nearest;   // per width, nearest (empty without nearest)
+    // Local frames: the reference on the local path (exact answers; rays
+    // skipped when they miss the local grid's range), and per configuration.
+    std::optional<WorkFigures> local_reference;
+    std::vector<LocalStudy> local;
     double seconds = 0;
 };
 
@@ -159,6 +180,21 @@ struct FixedRun {
 };
 FixedRun run_fixed(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts, WidthPair w, FixedMode mode,
                    const Image* reference);
+
+// The local path's reference render (every box query answered by
+// exact_hit) and the per-query figures of every spec on its queries. All
+// specs must share one grid width (InputError otherwise).
+struct LocalReferenceRun {
+    Image image;
+    WorkFigures figures;
+    std::vector<LocalStudy> specs;  // conservative and nearest per query filled in
+};
+LocalReferenceRun run_local_reference(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
+                                      const std::vector<LocalSpec>& specs);
+// A render through the local path in `mode`, every answer checked against
+// exact_hit; wrong pixels against `reference` when given.
+FixedRun run_local(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts, const LocalSpec& spec,
+                   FixedMode mode, const Image* reference);
 
 // Pixels whose RGB bytes differ (images of the same size; InputError otherwise).
 std::uint64_t wrong_pixels(const Image& a, const Image& b);

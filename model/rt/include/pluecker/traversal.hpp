@@ -57,7 +57,7 @@ namespace pluecker {
 // The choices of a traversal, and their names in output (the applications
 // parse them: pluecker/app/names.hpp)
 
-enum class BoxTestKind { Exact, Smits, Pluecker, Fixed };
+enum class BoxTestKind { Exact, Smits, Pluecker, Fixed, Local };
 enum class ChildOrder { Fixed, Dsa, Dist };
 
 const char* test_name(BoxTestKind t);

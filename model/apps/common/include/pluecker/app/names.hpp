@@ -17,7 +17,7 @@
 
 namespace pluecker {
 
-BoxTestKind parse_box_test(const std::string& s);      // exact | smits | pluecker | fixed
+BoxTestKind parse_box_test(const std::string& s);      // exact | smits | pluecker | fixed | local
 ChildOrder parse_child_order(const std::string& s);    // fixed | dsa | dist
 BuildMethod parse_build_method(const std::string& s);  // median | sah
 FixedMode parse_fixed_mode(const std::string& s);      // conservative | nearest
@@ -31,5 +31,9 @@ FloatUnit parse_float_unit(const std::string& s);      // float | smits (the bin
 //   "12x10,16x16"    separate pairs COORD_BITSxDIR_BITS (mixable with W)
 // Every width in 6..24; at least one; InputError naming the flag otherwise.
 std::vector<WidthPair> parse_widths(const std::string& spec, const std::string& flag = "--widths");
+
+// A list of widths in lo..hi: "A:B[:S]" or "W1,W2,...", as above (the
+// local frames' box widths of `pluecker study --local`).
+std::vector<int> parse_bit_list(const std::string& spec, const std::string& flag, int lo, int hi);
 
 }  // namespace pluecker

@@ -8,6 +8,7 @@
 #include "pluecker/app/args.hpp"
 
 #include "pluecker/fixed.hpp"
+#include "pluecker/local.hpp"
 #include "pluecker/render.hpp"
 
 #include <memory>
@@ -44,6 +45,14 @@ float parse_epsilon(const Args& a, float fallback);
 // is [-1 - e, 1 + e] on every axis; quantising that one box is the exact
 // test, done before the (possibly long) build.
 void check_epsilon_fixed(float epsilon, const FixedFormat& f);
+
+// The same for --test local: the widest box must fit the local format's range.
+void check_epsilon_local(float epsilon, const LocalFormat& f);
+
+// --box-bits, --dir-bits (default K + 3), --grid-bits of --test local, and
+// --frames parent|own, --cells axis|uniform.
+LocalFormat parse_local_format(const Args& a, FixedMode mode);
+LocalBuildOptions parse_local_build(const Args& a);
 
 // The camera frame the renderer uses (camera_basis): w = normalize(eye -
 // look), u = normalize(cross(up, w)), v = cross(w, u). Every one must be
