@@ -22,7 +22,8 @@ MAIN_RTL          = $(OUT)/$(SCENE)_rtl_$(COORD_BITS)x$(DIR_BITS)$(if $(filter n
 MAIN_SWEEP_SIZE   ?= 64
 MAIN_SWEEP_WIDTHS ?= 8:24:4
 
-# PLAN=FILE includes a plan file written by `make plan` (COORD_BITS := ..),
+# PLAN=FILE includes a plan file written by `make plan` (COORD_BITS := ..,
+# or UNIT := local, BOX_BITS := .. when the plan chose the local unit),
 # e.g. `make synth PLAN=out/plan.mk`; widths given on the command line
 # still win. Its values reach every recipe expanded at run time.
 ifdef PLAN
@@ -156,13 +157,60 @@ sim-float: build
 	@bin=$$(SIM_UNIT=$(FLOAT_UNIT) MODE=$(FLOAT_MODE) SIM_MUL_DSP=$(MUL_DSP) MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) \
 	  SIM_TAG_BITS=$(SIM_TAG_BITS) $(ENV) sim/build.sh | tail -1) && echo "sim-float: $$bin" && \
 	$$bin check --n $(FLOAT_N) --kind mixed --exact
+# ---- The local unit's harness (sim/local/) -----------------------------------
+# make sim-local         builds build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>]/pluecker_sim_local
+# make sim-local-query   LOCAL_QUERIES (default: 20000 generated, mixed and boundary) through the
+#                        local unit's RTL, each box in its tight frame, --check
+# make sim-local-render  hardware-in-the-loop render of SCENE at SIM_SIZE, compared byte for byte
+#                        with `pluecker render --test local` (fails loudly when they differ)
+# make sim-local-bench   its throughput (queries per second)
+# Variables: BOX_BITS, LOCAL_DIR_BITS (default BOX_BITS + 3), GRID_BITS, CHILDREN,
+# LOCAL_MUL_STYLE (auto|dsp|lut), MODE, SIM_TAG_BITS.
+BOX_BITS        ?= 8
+LOCAL_DIR_BITS  ?= $(shell b=$(BOX_BITS); echo $$(( b + 3 > 24 ? 24 : b + 3 )))
+GRID_BITS       ?= 32
+CHILDREN        ?= 1
+LOCAL_MUL_STYLE ?= auto
+LOCAL_SIM_DIR    = build/sim/local_k$(BOX_BITS)_d$(LOCAL_DIR_BITS)_g$(GRID_BITS)_c$(CHILDREN)$(if $(filter nearest,$(MODE)),_nearest)$(if $(filter-out auto,$(LOCAL_MUL_STYLE)),_$(LOCAL_MUL_STYLE))
+LOCAL_SIM_BIN    = $(LOCAL_SIM_DIR)/pluecker_sim_local
+LOCAL_SIM_VARS   = SIM_UNIT=local BOX_BITS=$(BOX_BITS) DIR_BITS=$(LOCAL_DIR_BITS) GRID_BITS=$(GRID_BITS) \
+                   CHILDREN=$(CHILDREN) MUL_STYLE=$(LOCAL_MUL_STYLE) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
+                   MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) SIM_OUT=$(LOCAL_SIM_DIR)
+LOCAL_OUT        = $(OUT)/$(SCENE)_$(notdir $(LOCAL_SIM_DIR))
+
+.PHONY: sim-local sim-local-query sim-local-render sim-local-bench
+
+sim-local: build
+	@$(LOCAL_SIM_VARS) $(ENV) sim/build.sh
+
+sim-local-query: sim-local
+	@if [ -n "$(LOCAL_QUERIES)" ]; then q="$(LOCAL_QUERIES)"; else \
+	  q=$(LOCAL_SIM_DIR)/queries.txt; $(LOCAL_SIM_BIN) gen --n 10000 --kind mixed --out $$q.mixed && \
+	  $(LOCAL_SIM_BIN) gen --n 10000 --kind boundary --out $$q.boundary && cat $$q.mixed $$q.boundary > $$q; fi; \
+	$(LOCAL_SIM_BIN) query --check $$q > $(LOCAL_SIM_DIR)/answers.txt && \
+	  echo "sim-local-query: answers in $(LOCAL_SIM_DIR)/answers.txt"
+
+sim-local-render: sim-local
+	@mkdir -p $(OUT)
+	$(LOCAL_SIM_BIN) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet \
+	  --out $(LOCAL_OUT)_rtl.png --stats $(LOCAL_OUT)_rtl.json
+	$(CLI) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet --test local --box-bits $(BOX_BITS) \
+	  --dir-bits $(LOCAL_DIR_BITS) --grid-bits $(GRID_BITS) --mode $(MODE) \
+	  --out $(LOCAL_OUT)_model.png --stats $(LOCAL_OUT)_model.json
+	@if cmp $(LOCAL_OUT)_model.png $(LOCAL_OUT)_rtl.png; then \
+	  echo "sim-local-render: PASS: the RTL render is bit-identical to the model's ($(LOCAL_OUT)_rtl.png)"; \
+	else echo "sim-local-render: FAIL: $(LOCAL_OUT)_rtl.png differs from $(LOCAL_OUT)_model.png" >&2; exit 1; fi
+
+sim-local-bench: sim-local
+	$(LOCAL_SIM_BIN) bench --n $(SIM_N)
 
 # ---- FPGA flow: ECP5 LFE5U-85F synthesis and place-and-route ---------------
 # (scripts/synth.py, fpga/). Results per width pair in
 # out/synth/<C>x<D>/summary.json. Extra flags: SYNTH_FLAGS=--no-pnr etc.
 # UNIT=float|smits synthesises a binary32 unit instead (MUL_DSP=1|3|4,
 # default the port contract's; CONSERVATIVE=1 for the conservative Plücker
-# unit): out/synth/<unit>[_cons]_dsp<M>/summary.json.
+# unit): out/synth/<unit>[_cons]_dsp<M>/summary.json. UNIT=local (as a plan
+# file choosing the local unit sets it) runs synth-local instead.
 SEEDS        ?= 3
 SPEEDS       ?= 6 8
 FREQ         ?= 250
@@ -174,14 +222,31 @@ CONSERVATIVE ?=
 .PHONY: synth synth-smoke
 
 synth: setup
+ifeq ($(UNIT),local)
+	@$(MAKE) --no-print-directory synth-local
+else
 	$(ENV) python scripts/synth.py --unit $(UNIT) $(if $(filter fixed,$(UNIT)),--coord-bits $(COORD_BITS) \
 	  --dir-bits $(DIR_BITS)) $(if $(MUL_DSP),--mul-dsp $(MUL_DSP)) $(if $(CONSERVATIVE),--conservative $(CONSERVATIVE)) \
 	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+endif
 
 # Default widths, one seed, speed grade 8: a quick check that the RTL still
 # synthesises, places and routes (out/synth-smoke/).
 synth-smoke: setup
 	$(ENV) python scripts/synth.py --smoke --freq $(FREQ) $(SYNTH_FLAGS)
+
+# The local unit (out/synth/local_k<K>_d<D>_g<G>_c<C>[_<style>]/summary.json;
+# SYNTH_LOCAL_PART=child: its child datapath alone). LOCAL_WIDTHS (KxDxG
+# list) overrides BOX_BITS/LOCAL_DIR_BITS/GRID_BITS.
+LOCAL_WIDTHS     ?= $(BOX_BITS)x$(LOCAL_DIR_BITS)x$(GRID_BITS)
+SYNTH_LOCAL_PART ?= unit
+
+.PHONY: synth-local
+
+synth-local: setup
+	$(ENV) python scripts/synth.py --local --local-widths $(LOCAL_WIDTHS) --children $(CHILDREN) \
+	  --mul-style $(LOCAL_MUL_STYLE) --part $(SYNTH_LOCAL_PART) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
+	  --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 
 # ---- Hostile input: fuzzing, sanitizers, the hostile-input table ------------
 # (scripts/fuzz.sh, model/fuzz/,
@@ -224,31 +289,38 @@ hostile-table: build
 #               ../shared/scenes/* when present) over REPORT_WIDTHS at
 #               REPORT_SIZE: out/report/report.html + report.json.
 #               REPORT_SYNTH=1 runs `make synth` for widths not measured yet;
-#               REPORT_RTL_WIDTHS: widths of the RTL vs model check.
+#               REPORT_RTL_WIDTHS: widths of the RTL vs model check;
+#               REPORT_LOCAL: local-frame box widths K beside them (study
+#               --local; the local unit's hardware from make synth-local).
 # make plan     the narrowest widths whose extra box tests on SCENE stay within
 #               MAX_EXTRA_WORK percent; writes PLAN_OUT (make variables).
+#               PLAN_LOCAL=A:B (box widths K) also plans the local unit and
+#               chooses the one with more effective box tests per second
+#               per chip (both synthesised; else the global one, said so).
 REPORT_WIDTHS     ?= 6:24:2
 REPORT_SIZE       ?= 128
 REPORT_SYNTH      ?= 0
 REPORT_SCENES     ?= auto
 REPORT_RTL_WIDTHS ?= 8 16 24
 REPORT_RTL_SIZE   ?= 48
+REPORT_LOCAL      ?= 8:12:2
 MAX_EXTRA_WORK    ?= 1
 PLAN_WIDTHS       ?= 6:24
 PLAN_SIZE         ?= 128
 PLAN_OUT          ?= $(OUT)/plan.mk
+PLAN_LOCAL        ?=
 
 .PHONY: report plan
 
 report: build
 	$(ENV) python scripts/report.py --cli $(CLI) --size $(REPORT_SIZE) --widths $(REPORT_WIDTHS) \
 	  --scenes $(REPORT_SCENES) --synth $(REPORT_SYNTH) --rtl-widths "$(REPORT_RTL_WIDTHS)" \
-	  --rtl-size $(REPORT_RTL_SIZE) --jobs $(JOBS) --out $(OUT)/report
+	  --rtl-size $(REPORT_RTL_SIZE) --local "$(REPORT_LOCAL)" --jobs $(JOBS) --out $(OUT)/report
 
 plan: build
 	@mkdir -p $(dir $(PLAN_OUT))
 	$(CLI) plan --scene $(SCENE) --max-extra-work $(MAX_EXTRA_WORK) --widths $(PLAN_WIDTHS) \
-	  --size $(PLAN_SIZE) --out $(PLAN_OUT)
+	  --size $(PLAN_SIZE) --out $(PLAN_OUT) $(if $(PLAN_LOCAL),--local $(PLAN_LOCAL) --children $(CHILDREN))
 
 # ---- Report tables and Embree peer ------------------------------------------
 # make tables   the four tables of Mahovsky's 2005 report (box test, child
@@ -324,6 +396,11 @@ peer: setup
 #                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
 #                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
 #                   end-to-end check (13 min loaded, builds included).
+#                   The local unit: 2.5 REGRESS_LOCAL_N queries (extreme,
+#                   set-up, boundary, random) through its RTL at each of
+#                   REGRESS_LOCAL_CONFIGS (KxDxG, c CHILDREN, n nearest), 10^7
+#                   at the defaults, 0 mismatches and 0 false misses
+#                   against exact; the local benches' long sweeps.
 # make formal       SymbiYosys (YoWASP) + z3: unbounded proof (1-step
 #                   k-induction) of the handshake and flow-control properties
 #                   at 6/6, 6/6 PIPELINE=1, 6/18 and 18/18 (S2x stages 0, 1,
@@ -348,6 +425,8 @@ peer: setup
 REGRESS_N      ?= 1000000
 REGRESS_FLOAT_N ?= 10000000
 REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
+REGRESS_LOCAL_N ?= 1000000
+REGRESS_LOCAL_CONFIGS ?= 8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1
 
 MUTANTS        ?=
 
@@ -356,6 +435,7 @@ MUTANTS        ?=
 sim-regress: build
 	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
 	  REGRESS_FLOAT_N=$(REGRESS_FLOAT_N) \
+	  REGRESS_LOCAL_N=$(REGRESS_LOCAL_N) REGRESS_LOCAL_CONFIGS="$(REGRESS_LOCAL_CONFIGS)" \
 	  $(ENV) scripts/regress.sh
 
 formal: setup

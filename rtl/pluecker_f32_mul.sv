@@ -71,7 +71,7 @@ module pluecker_f32_mul #(
   // Sign, exponent and special flags beside the product.
   localparam int SIDE_W = 1 + 10 + 3;
   wire [SIDE_W-1:0] side;
-  pluecker_delay #(.W(SIDE_W), .N(MANT_LATENCY)) u_side (
+  pluecker_pipe #(.WIDTH(SIDE_W), .STAGES(MANT_LATENCY)) u_side (
       .clk_i(clk_i), .d_i({sign, e_sum, nan, inf, zero}), .q_o(side));
   wire sign4 = side[13];
   wire signed [9:0] e4 = side[12:3];

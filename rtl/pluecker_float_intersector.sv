@@ -173,10 +173,10 @@ module pluecker_float_intersector #(
   always_ff @(posedge clk_i) ok1_q <= !(|orig_rej) && !(endv0_q && |end_rej);
 
   wire ok_edge;  // ok1_q at S_EDGE
-  pluecker_delay #(.W(1), .N(S_EDGE - 1)) u_ok (.clk_i(clk_i), .d_i(ok1_q), .q_o(ok_edge));
+  pluecker_pipe #(.WIDTH(1), .STAGES(S_EDGE - 1)) u_ok (.clk_i(clk_i), .d_i(ok1_q), .q_o(ok_edge));
 
   wire [2:0][31:0] d_s;  // |d| at S_ADD
-  pluecker_delay #(.W(96), .N(ADD_LATENCY)) u_dir (.clk_i(clk_i), .d_i(d0_q), .q_o(d_s));
+  pluecker_pipe #(.WIDTH(96), .STAGES(ADD_LATENCY)) u_dir (.clk_i(clk_i), .d_i(d0_q), .q_o(d_s));
 
   // -------------------------------------------------------------------------
   // S9..S15: products B_j*D_i and A_i*D_j; S16: edge comparisons

@@ -5,7 +5,8 @@
 // ADD_STAGES must be the number of operands wider than 18 bits (0, 1 or 2;
 // elaboration fails otherwise), so that the latency is a function of the
 // widths alone, the same on every target. Operands are at most 35 bits,
-// 53 together (the intersector needs at most 25 each).
+// 70 together (the intersector needs at most 25 each; the local unit's
+// moment products up to 35 x 33, rtl/pluecker_local_frame.sv).
 //
 // With PLUECKER_ECP5 defined (scripts/synth.py defines it for Yosys):
 //   - both operands at most 18 bits: one MULT18X18D with its input registers
@@ -23,7 +24,8 @@
 //         +1  p = xl*y + (xh*y << 17)
 //       both split:
 //         +1  c = {ah*bh, al*bl[33:0]} (al*bl < 2^34, so no add)
-//             x = ah*bl + al*bh
+//             x = ah*bl + al*bh (the two 36-bit products sign-extended
+//             to the WA+WB-17 bits of x)
 //         +2  p = c + (x << 17)
 //     All sums are taken modulo 2^(WA+WB), which holds the exact product.
 // Otherwise (simulation, lint, other targets) the same number of registers
@@ -53,8 +55,8 @@ module pluecker_mul #(
   if (ADD_STAGES != SPLIT_A + SPLIT_B) begin : g_bad_add_stages
     $error("pluecker_mul: ADD_STAGES must equal the number of operands wider than 18 bits");
   end
-  if (WA > 35 || WB > 35 || WA + WB > 53 || WA < 2 || WB < 2) begin : g_bad_width
-    $error("pluecker_mul: operand widths must be 2..35 bits, 53 bits together");
+  if (WA > 35 || WB > 35 || WA + WB > 70 || WA < 2 || WB < 2) begin : g_bad_width
+    $error("pluecker_mul: operand widths must be 2..35 bits, 70 bits together");
   end
 
 `ifdef PLUECKER_ECP5
@@ -136,7 +138,7 @@ module pluecker_mul #(
     logic [W-18:0] x_q;
     always_ff @(posedge clk_i) begin
       c_q <= {pp[3][W-35:0], pp[0][33:0]};
-      x_q <= pp[1][W-18:0] + pp[2][W-18:0];
+      x_q <= (W - 17)'($signed(pp[1])) + (W - 17)'($signed(pp[2]));
       p_q <= {c_q[W-1:17] + x_q, c_q[16:0]};
     end
     assign p_o = p_q;

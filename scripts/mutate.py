@@ -63,6 +63,11 @@ RTL = "rtl/pluecker_intersector.sv"
 FIXED = "model/core/src/fixed.cpp"
 GRID = "model/core/src/grid.cpp"
 LOCAL = "model/core/src/local.cpp"
+LOCAL_CHILD = "rtl/pluecker_local_child.sv"
+LOCAL_FRAME = "rtl/pluecker_local_frame.sv"
+# The local unit's short cocotb configuration (K 8, D 11, G 32, conservative): every stream.
+LOCAL_TB = ("cocotb:tb/pluecker_local_intersector/test_pluecker_local_intersector.py::"
+            "test_pluecker_local_intersector[k8_d11_g32_c1_cons]@stream")
 
 
 class Stop(Exception):
@@ -270,7 +275,7 @@ MUTANTS: list[Mutant] = [
            ["ctest:Local.NeverMissesOnRandomQueries"]),
     Mutant("local-moment-floor", "local frames: the moment rounded down instead of to nearest",
            [(LOCAL, "        i128 w = 2 * round_shift(lambda, sh);", "        i128 w = 2 * (sh <= 0 ? lambda << -sh : lambda >> std::min(sh, 120));")],
-           ["ctest:Local.NeverMissesOnRaysFromAnywhere"]),
+           ["ctest:Local.MomentRoundsToNearest"]),
     Mutant("local-box-lo-nearest", "local frames: a box's LO rounded to nearest in its frame",
            [(LOCAL, "out.lo[a] = plane_in_frame(b.lo[a], fr.origin[a], fr.exp[a], cons ? Round::Down : Round::Nearest, "
                     "f.grid_bits);",
@@ -278,7 +283,23 @@ MUTANTS: list[Mutant] = [
            ["ctest:Local.NeverMissesOnRandomQueries"]),
     Mutant("local-end-nearest", "local frames: the local segment end rounded to nearest in conservative mode",
            [(LOCAL, "cons ? ceil_shift(de, fr.exp[i]) : round_shift(de, fr.exp[i])", "round_shift(de, fr.exp[i])")],
-           ["ctest:Local.NeverMissesOnRaysFromAnywhere"]),
+           ["ctest:Local.SegmentEndRoundsOutwardInConservativeMode"]),
+    # --- RTL: the local unit (pluecker_local_child, pluecker_local_frame) -------
+    Mutant("local-rtl-margin-dropped", "local unit RTL: the child margin ext_j + ent_i dropped",
+           [(LOCAL_CHILD, "CONSERVATIVE ? WMW'(ext1_q[J]) + WMW'(ent1_q[I]) : '0", "'0")],
+           [LOCAL_TB]),
+    Mutant("local-rtl-entry-plane-neg", "local unit RTL: entry plane of negative axes from LO (no mirror)",
+           [(LOCAL_CHILD, "assign ent_d[i] = cls_i[i] ? ~hi : lo;", "assign ent_d[i] = lo;")],
+           [LOCAL_TB]),
+    Mutant("local-rtl-end-valid-ignored", "local unit RTL: the end test applied to unbounded rays too",
+           [(LOCAL_CHILD, "(!endv1_q || (&end_ok_d))", "(&end_ok_d)")],
+           [LOCAL_TB]),
+    Mutant("local-rtl-origin-test-dropped", "local unit RTL: the origin test dropped",
+           [(LOCAL_CHILD, "ok2_q <= (&org_ok_d) && ", "ok2_q <= ")],
+           [LOCAL_TB]),
+    Mutant("local-rtl-w-plus-one-dropped", "local unit RTL: the node set-up's +1 of W dropped in conservative mode",
+           [(LOCAL_FRAME, " + WZ'(CONSERVATIVE ? 1 : 0);", ";")],
+           [LOCAL_TB]),
     # --- harness and port contract --------------------------------------------
     Mutant("contract-pack-end-as-origin", "port contract: pack_query puts the origin on the end port",
            [("model/core/src/contract.cpp", "p.ray_end = pack3(r.end, f.coord_bits);",
@@ -355,20 +376,31 @@ class Tree:
 
     # -- harness --------------------------------------------------------------
     def build_sim(self, cfg: str) -> tuple[Path, subprocess.CompletedProcess | None]:
+        """The harness of cfg: CxD[n] (the global unit; n: nearest) or
+        localKxDxG (the local unit, one child, conservative)."""
         m = re.fullmatch(r"(\d+)x(\d+)(n?)", cfg)
-        if not m:
-            raise Stop(f"bad harness configuration '{cfg}' (CxD, CxDn for nearest)")
+        ml = re.fullmatch(r"local(\d+)x(\d+)x(\d+)", cfg)
+        if not m and not ml:
+            raise Stop(f"bad harness configuration '{cfg}' (CxD, CxDn for nearest, localKxDxG)")
         failed = self.build_model(["pluecker_app"])
         if failed:
             raise Stop(f"the copy's model libraries do not build:\n{failed.stderr[-3000:]}")
-        out = self.dir / "build" / "sim" / (f"{m[1]}x{m[2]}" + ("_nearest" if m[3] else ""))
+        if ml:
+            out = self.dir / "build" / "sim" / f"local_k{ml[1]}_d{ml[2]}_g{ml[3]}_c1"
+            unit = dict(SIM_UNIT="local", BOX_BITS=ml[1], DIR_BITS=ml[2], GRID_BITS=ml[3], CHILDREN="1",
+                        MUL_STYLE="auto", MODE="conservative")
+            binary = "pluecker_sim_local"
+        else:
+            out = self.dir / "build" / "sim" / (f"{m[1]}x{m[2]}" + ("_nearest" if m[3] else ""))
+            unit = dict(COORD_BITS=m[1], DIR_BITS=m[2], MODE="nearest" if m[3] else "conservative")
+            binary = "pluecker_sim"
         # No lint or style warnings (a mutant may leave a signal unused):
         # linting is `make lint`'s job. Not -Wno-fatal, which would let the
         # RTL's elaboration checks ($error, USERERROR) pass.
-        env = dict(self.env, COORD_BITS=m[1], DIR_BITS=m[2], MODE="nearest" if m[3] else "conservative",
-                   MODEL_BUILD=str(self.model), SIM_OUT=str(out), SIM_JOBS=str(self.jobs), SIM_VFLAGS="-Wno-lint -Wno-style")
+        env = dict(self.env, **unit, MODEL_BUILD=str(self.model), SIM_OUT=str(out), SIM_JOBS=str(self.jobs),
+                   SIM_VFLAGS="-Wno-lint -Wno-style")
         r = run(self.venv_cmd(self.dir / "sim" / "build.sh"), self.dir, env)
-        return out / "pluecker_sim", (None if r.returncode == 0 else r)
+        return out / binary, (None if r.returncode == 0 else r)
 
 
 @dataclass

@@ -24,13 +24,25 @@
 #      ASSERT_ON assertions compiled in (SIM_ASSERT=1), in its own
 #      directories (REGRESS_SIM_ROOT), so that it does not force `make sim`'s
 #      builds to be redone;
+#   2b. local: the local unit (rtl/pluecker_local_intersector.sv) through its
+#      harness (pluecker_sim_local, SIM_UNIT=local, ASSERT_ON compiled in) at
+#      each of REGRESS_LOCAL_CONFIGS: REGRESS_LOCAL_N extreme queries and
+#      REGRESS_LOCAL_N / 2 each of set-up, boundary and random queries
+#      (pluecker_sim_local gen), each box in its tight frame, with
+#      `pluecker_sim_local query --check` (zero mismatches against the model,
+#      every child box of every RTL query checked) and, in conservative mode,
+#      the answers against `pluecker query --test exact` (zero false misses);
+#      2.5 REGRESS_LOCAL_N queries per configuration, 10^7 at the defaults;
 #   3. cocotb: the long stress bench (PLUECKER_LONG=1
 #      tb/pluecker_intersector/test_stress.py: LATENCY 6, 7 and 8), its sizes
 #      scaled with REGRESS_N (25x the `make test` sizes at 10^6, never below
 #      1x);
 #   4. sweep: the long cocotb sweeps (PLUECKER_LONG=1): the intersector at
 #      every width pair of its sweep in both modes and its DSP builds
-#      (tb/pluecker_intersector/test_pluecker_intersector.py), and the
+#      (tb/pluecker_intersector/test_pluecker_intersector.py), the local unit
+#      and its two parts at every configuration of their sweeps, their
+#      MULT18X18D builds included (tb/pluecker_local_intersector,
+#      tb/pluecker_local_frame, tb/pluecker_local_child), and the
 #      multipliers and the MULT18X18D model checks (tb/pluecker_mul,
 #      tb/pluecker_mul_lut, tb/mult18x18d), 25x the `make test` queries;
 #      the binary32 units and their primitives (tb/pluecker_float_intersector,
@@ -53,7 +65,10 @@
 # is skipped), REGRESS_SIM_ROOT
 # (default build/regress/sim), REGRESS_ASSERT (default 1: SIM_ASSERT for the
 # harness), REGRESS_OUT (default build/regress), REGRESS_PARTS (default
-# "model rtl cocotb sweep float"), REGRESS_FLOAT_N, REGRESS_FLOAT_UNITS.
+# "model rtl local cocotb sweep float"), REGRESS_LOCAL_N (default 1000000),
+# REGRESS_LOCAL_CONFIGS (default "8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1":
+# BOX_BITSxDIR_BITSxGRID_BITS, c CHILDREN, a trailing n = nearest mode),
+# REGRESS_FLOAT_N, REGRESS_FLOAT_UNITS.
 # Exit status 0 only when every part passes. Run through scripts/venv-exec.sh
 # (the Makefile does).
 set -euo pipefail
@@ -66,7 +81,9 @@ widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n}"
 sim_root="${REGRESS_SIM_ROOT:-build/regress/sim}"
 sim_assert="${REGRESS_ASSERT:-1}"
 out="${REGRESS_OUT:-build/regress}"
-parts="${REGRESS_PARTS:-model rtl cocotb sweep float}"
+parts="${REGRESS_PARTS:-model rtl local cocotb sweep float}"
+local_n="${REGRESS_LOCAL_N:-1000000}"
+local_configs="${REGRESS_LOCAL_CONFIGS:-8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1}"
 float_n="${REGRESS_FLOAT_N:-10000000}"
 float_units="${REGRESS_FLOAT_UNITS:-float float_cons smits}"
 mkdir -p "$out"
@@ -158,6 +175,60 @@ if [[ " $parts " == *" rtl "* ]]; then
   done
 fi
 
+# --- 2b. the local unit ---------------------------------------------------------------
+if [[ " $parts " == *" local "* ]]; then
+  total=0
+  for cfg in $local_configs; do
+    mode=conservative
+    [[ "$cfg" == *n ]] && mode=nearest
+    spec="${cfg%n}"
+    ch="${spec##*c}"
+    kdg="${spec%c*}"
+    IFS=x read -r k d g <<< "$kdg"
+    dir="$sim_root/local_k${k}_d${d}_g${g}_c${ch}$([[ $mode == nearest ]] && echo _nearest || true)"
+    t0=$(date +%s)
+    if ! SIM_UNIT=local BOX_BITS="$k" DIR_BITS="$d" GRID_BITS="$g" CHILDREN="$ch" MODE="$mode" \
+      MODEL_BUILD="$model_build" SIM_OUT="$dir" SIM_JOBS="$jobs" SIM_ASSERT="$sim_assert" sim/build.sh \
+      > "$out/build_local_$cfg.log" 2>&1; then
+      say "local $cfg: harness build FAIL (log $out/build_local_$cfg.log)"
+      fail=1
+      continue
+    fi
+    sim="$dir/pluecker_sim_local"
+    for kind in extreme setup boundary random; do
+      count=$local_n
+      [[ $kind == extreme ]] || count=$((local_n / 2))
+      # The set-up queries depend on the grid's range; the others on nothing.
+      qf="$out/local_${kind}_$([[ $kind == setup ]] && echo "g${g}_" || true)${count}.txt"
+      ef="${qf%.txt}.exact"
+      if [[ ! -s "$qf" ]]; then
+        "$sim" gen --n "$count" --kind "$kind" --seed 20263 --out "$qf"
+        "$model_build/pluecker" query --test exact "$qf" > "$ef"
+      fi
+      tag="local_${cfg}_$kind"
+      rc=0
+      "$sim" query --check "$qf" > "$out/$tag.answers" 2> "$out/$tag.log" || rc=$?
+      check="$(grep -E '^check' "$out/$tag.log" | tail -1)"
+      if [[ $rc -ne 0 ]]; then
+        say "local $cfg ($mode, $kind): FAIL, $check ($(elapsed "$t0"))"
+        head -5 "$out/$tag.log" | tee -a "$summary"
+        fail=1
+        continue
+      fi
+      total=$((total + count))
+      if [[ $mode == conservative ]]; then
+        read -r fm fh hits <<< "$(paste -d' ' "$ef" "$out/$tag.answers" \
+          | awk '$1==1 && $2==0 {m++} $1==0 && $2==1 {h++} $1==1 {r++} END {print m+0, h+0, r+0}')"
+        say "local $cfg ($mode, $kind): $check; against exact: $hits real hits, $fm false misses, $fh false hits ($(elapsed "$t0"))"
+        [[ "$fm" == 0 ]] || fail=1
+      else
+        say "local $cfg ($mode, $kind): $check ($(elapsed "$t0"))"
+      fi
+    done
+  done
+  say "local: $total queries through the local unit's RTL"
+fi
+
 # --- 3. cocotb stress ----------------------------------------------------------------
 if [[ " $parts " == *" cocotb "* ]]; then
   t0=$(date +%s)
@@ -178,7 +249,8 @@ fi
 if [[ " $parts " == *" sweep "* ]]; then
   t0=$(date +%s)
   if PLUECKER_LONG=1 PLUECKER_PY_DIR="$model_build" python -m pytest -n "$jobs" -q \
-    tb/pluecker_intersector/test_pluecker_intersector.py tb/pluecker_mul tb/pluecker_mul_lut tb/mult18x18d \
+    tb/pluecker_intersector/test_pluecker_intersector.py tb/pluecker_local_intersector tb/pluecker_local_frame \
+    tb/pluecker_local_child tb/pluecker_mul tb/pluecker_mul_lut tb/mult18x18d \
     tb/pluecker_float_intersector tb/pluecker_smits_intersector tb/pluecker_f32_add tb/pluecker_f32_mul \
     > "$out/sweep.log" 2>&1; then
     say "sweep: long cocotb sweeps PASS ($(elapsed "$t0"); log $out/sweep.log)"

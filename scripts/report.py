@@ -44,6 +44,8 @@ def parse_args(argv):
     p.add_argument("--widths", default="6:24:2", help="width pairs (the CLI's --widths syntax)")
     p.add_argument("--scenes", default="auto",
                    help="comma list of scene specs; 'auto' = teapot, spheres and ../shared/scenes/* when present")
+    p.add_argument("--local", default="8:12:2",
+                   help="local-frame box widths K (the CLI's study --local syntax; '' to skip)")
     p.add_argument("--order", default="dsa", choices=("fixed", "dsa"))
     p.add_argument("--build", default="sah", choices=("sah", "median"))
     p.add_argument("--synth", type=int, choices=(0, 1), default=0,
@@ -86,7 +88,8 @@ def short_name(spec: str) -> str:
 def run_study(args, spec: str, outdir: Path) -> dict:
     path = outdir / f"study_{re.sub(r'[^A-Za-z0-9_.-]', '_', short_name(spec))}.json"
     r = rl.run([args.cli, "study", "--scene", spec, "--size", args.size, "--widths", args.widths,
-                "--order", args.order, "--build", args.build, "--threads", args.jobs, "--json", path])
+                "--order", args.order, "--build", args.build, "--threads", args.jobs, "--json", path]
+               + (["--local", args.local] if args.local else []))
     sys.stdout.write(r.stdout)
     with open(path) as f:
         j = json.load(f)
@@ -162,6 +165,55 @@ def derived(studies: dict, hw: dict) -> dict:
                     sp: v / ref_bpr for sp, v in h["box_tests_per_s_per_chip"].items()}
             per_w[key] = e
         out[name] = per_w
+    return out
+
+
+def local_key(c: dict) -> str:
+    return f"K{c['box_bits']} D{c['dir_bits']} G{c['grid_bits']}"
+
+
+def local_hardware(studies: dict, synth_dir: Path) -> dict:
+    """The local unit's synthesis summaries (make synth-local) of the
+    studied configurations: out/synth/local_k<K>_d<D>_g<G>_c<C>[_style]."""
+    out = {}
+    for j in studies.values():
+        for c in j.get("local", {}).get("configs", []):
+            stem = f"local_k{c['box_bits']}_d{c['dir_bits']}_g{c['grid_bits']}_c"
+            for d in sorted(synth_dir.glob(stem + "*")):
+                sm = rl.read_json(d / "summary.json")
+                if sm and sm.get("box_tests_per_s_per_chip"):
+                    u = sm.get("utilisation", {})
+                    out[d.name] = {"key": local_key(c), "children": sm.get("children"),
+                                   "LUT4": u.get("LUT4"), "CCU2C": u.get("CCU2C"), "TRELLIS_FF": u.get("TRELLIS_FF"),
+                                   "MULT18X18D": u.get("MULT18X18D"), "latency": sm.get("latency"),
+                                   "units_per_chip": sm.get("units_per_chip"), "limited_by": sm.get("limited_by"),
+                                   "fmax_mhz": {sp: f["median"] for sp, f in sm.get("fmax_mhz", {}).items()},
+                                   "box_tests_per_s_per_chip": sm["box_tests_per_s_per_chip"]}
+    return out
+
+
+def local_derived(studies: dict, lhw: dict, der: dict) -> dict:
+    """Effective rays per second per chip of each synthesised local unit on
+    each scene (its box tests per second per chip over the local render's
+    box tests per ray), beside the best global width's."""
+    out = {}
+    for name, j in studies.items():
+        rows = []
+        best_global = {}
+        for e in der.get(name, {}).values():
+            for sp, v in e.get("rays_per_s_per_chip", {}).items():
+                best_global[sp] = max(best_global.get(sp, 0), v)
+        for c in j.get("local", {}).get("configs", []):
+            bpr = c["work"]["per_ray"]["box_tests"]
+            for unit, h in lhw.items():
+                if h["key"] != local_key(c):
+                    continue
+                rays = {sp: v / bpr for sp, v in h["box_tests_per_s_per_chip"].items()}
+                rows.append({"unit": unit, "key": h["key"], "box_tests_per_ray": bpr, "rays_per_s_per_chip": rays,
+                             "best_global_rays_per_s_per_chip": best_global,
+                             "ratio_to_best_global": {sp: v / best_global[sp] for sp, v in rays.items()
+                                                      if best_global.get(sp)}})
+        out[name] = rows
     return out
 
 
@@ -410,6 +462,21 @@ def scene_section(name: str, j: dict, rtl: list[dict]) -> list[str]:
                     "extra box tests %", "extra node visits %", "extra tri tests %", "box tests / ray",
                     "cons. wrong px", "nearest false misses", "nearest false-hit rate",
                     "nearest render false misses", "nearest wrong px", "nearest wrong px %"], rows))
+    loc = j.get("local")
+    if loc:
+        lref = loc.get("reference", {})
+        b.append(f"<p>Local frames (<code>docs/local-frames.md</code>): against their own exact reference on the "
+                 f"local path ({fmt(lref.get('per_ray', {}).get('box_tests'), 2)} box tests per ray).</p>")
+        rows = []
+        for c in loc["configs"]:
+            qc, wk, nr = c["query"]["conservative"], c["work"], c["nearest"]
+            rows.append([local_key(c), qc["false_misses"], qc["false_hit_rate"], wk["extra_percent"]["box_tests"],
+                         wk["extra_percent"]["node_visits"], wk["extra_percent"]["triangle_tests"],
+                         wk["per_ray"]["box_tests"], wk["checked"]["false_misses"], nr["wrong_pixels"],
+                         c["memory"]["bytes_per_node"]])
+        b.append(table(["local KxDxG", "cons. false misses", "cons. false-hit rate", "extra box tests %",
+                        "extra node visits %", "extra tri tests %", "box tests / ray", "cons. render false misses",
+                        "nearest wrong px", "bytes / node"], rows))
     if rtl:
         b.append(table(["RTL check", "traced size", "queries compared", "mismatches", "exit"],
                        [[rl.pair_name(r["coord_bits"], r["dir_bits"]), f"{r['size']}x{r['size']}",
@@ -468,7 +535,35 @@ def float_section(fl: dict) -> list[str]:
     return b
 
 
-def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots, timing, fl) -> None:
+def local_hardware_section(lhw: dict, lder: dict, speeds: list[str]) -> list[str]:
+    b = ["<h3>The local unit (out/synth/local_*)</h3>"]
+    if not lhw:
+        return b + ["<p>Not synthesised for the studied box widths (<code>make synth-local BOX_BITS=K "
+                    "CHILDREN=2</code>).</p>"]
+    sp_all = sorted({sp for h in lhw.values() for sp in h["box_tests_per_s_per_chip"]})
+    rows = [[u, h["children"], h["LUT4"], h["CCU2C"], h["TRELLIS_FF"], h["MULT18X18D"], h["latency"],
+             h["units_per_chip"], h["limited_by"] or "–"]
+            + [h["fmax_mhz"].get(sp, "–") for sp in sp_all]
+            + [h["box_tests_per_s_per_chip"].get(sp, 0) / 1e9 for sp in sp_all] for u, h in lhw.items()]
+    b.append(table(["unit", "children / query", "LUT4", "CCU2C", "FF", "MULT18X18D", "latency", "units/chip",
+                    "limited by"] + [f"Fmax MHz speed {sp}" for sp in sp_all]
+                   + [f"G box tests/s/chip speed {sp}" for sp in sp_all], rows))
+    rows = []
+    for n, lst in lder.items():
+        for e in lst:
+            rows.append([n, e["unit"], e["box_tests_per_ray"]]
+                        + [e["rays_per_s_per_chip"].get(sp, 0) / 1e6 for sp in sp_all]
+                        + [e["ratio_to_best_global"].get(sp, "–") for sp in sp_all])
+    if rows:
+        b.append("<p>Effective rays per second per chip of the local unit, and its ratio to the best global width "
+                 "of the sweep that has been synthesised (same definition as above).</p>")
+        b.append(table(["scene", "unit", "box tests/ray"] + [f"M rays/s/chip speed {sp}" for sp in sp_all]
+                       + [f"local / best global, speed {sp}" for sp in sp_all], rows, left=2))
+    return b
+
+
+def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots, timing, fl=None,
+               lhw=None, lder=None) -> None:
     body = ["<h1>Fixed-point Plücker box test: speed for accuracy</h1>",
             f"<p class='note'>Generated by <code>scripts/report.py</code> ({time.strftime('%Y-%m-%d %H:%M')}). "
             f"Study size {args.size}&times;{args.size}, widths <code>{rl.esc(args.widths)}</code>, order "
@@ -535,8 +630,10 @@ def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots,
                           + [f"same without extra work, speed {sp}" for sp in speeds], rows, left=2))
     else:
         body.append("<p>Fmax not measured for any width of the sweep: no throughput figures.</p>")
-
-    body += float_section(fl)
+    if args.local:
+        body += local_hardware_section(lhw or {}, lder or {}, speeds)
+    if fl:
+        body += float_section(fl)
     body.append("<h2>Golden-model comparison</h2>")
     body.append("<p>RTL vs model: the Verilated RTL (<code>pluecker_sim query --check</code>) on every query of "
                 "a traced fixed-point render (<code>pluecker trace --test fixed</code>), each answer compared "
@@ -624,6 +721,8 @@ def main(argv) -> int:
         say(f"report: {r['float']} against fixed {r['fixed']}: LUT4 slots x{fmt(r['area_placed_comb'], 2)}, "
             f"MULT18X18D x{fmt(r['area_MULT18X18D'], 2)}, box tests/s per chip fixed : float "
             + ", ".join(f"{fmt(v, 2)} (speed {sp})" for sp, v in sorted(r["chip_ratio"].items())))
+    lhw = local_hardware(studies, synth_dir)
+    lder = local_derived(studies, lhw, der)
 
     t = time.monotonic()
     rtl: dict[str, list] = {}
@@ -642,16 +741,18 @@ def main(argv) -> int:
     plots = plot_all(studies, hw, der, plotdir, args.synth_dir)
     timing["total"] = time.monotonic() - t0
     write_html(args, outdir, scenes=[short_name(s) for s in scenes], studies=studies, rtl=rtl, hw=hw, der=der,
-               cap=cap, cap_src=cap_src, plots=plots, timing=timing, fl=fl)
+               cap=cap, cap_src=cap_src, plots=plots, timing=timing, fl=fl, lhw=lhw, lder=lder)
     report = {
         "config": {"size": args.size, "widths": args.widths, "order": args.order, "build": args.build,
-                   "scenes": scenes, "rtl_widths": args.rtl_widths, "rtl_size": args.rtl_size,
+                   "scenes": scenes, "local": args.local, "rtl_widths": args.rtl_widths, "rtl_size": args.rtl_size,
                    "synth": bool(args.synth)},
         "device": {"name": rl.DEVICE, "capacity": cap, "capacity_source": cap_src},
         "scenes": studies,
         "hardware": hw,
         "derived": der,
         "float32": fl,
+        "local_hardware": lhw,
+        "local_derived": lder,
         "rtl_vs_model": rtl,
         "timing_seconds": {k: round(v, 1) for k, v in timing.items()},
     }

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """ECP5 synthesis and place-and-route of a box-test unit (LFE5U-85F): the
-fixed-point pluecker_intersector (--unit fixed, the default) or a binary32
+fixed-point pluecker_intersector (--unit fixed, the default), a binary32
 unit (--unit float: pluecker_float_intersector; --unit smits:
-pluecker_smits_intersector).
+pluecker_smits_intersector), and with --local pluecker_local_intersector or
+its child datapath alone.
 
 Flow per width pair (COORD_BITS x DIR_BITS; one run for a binary32 unit):
   1. Yosys `synth_ecp5 -json` of rtl/*.sv under the out-of-context harness
@@ -25,6 +26,18 @@ Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary;
 to the directory name), out/synth/<unit>[_cons]_dsp<M>/summary.json for a
 binary32 unit (--mul-dsp M, --conservative 1). `--no-pnr` stops after Yosys
 (utilisation only).
+
+The local unit (--local, the local port contract
+rtl/pluecker_local_contract.json): --local-widths KxDxG[,...] (default
+8x11x32), --children 1|2, --mul-style; --part unit (default: the unit under
+fpga/ooc_local_wrapper.sv) or child (pluecker_local_child alone under
+fpga/ooc_local_child_wrapper.sv: the per-child part, to tell it from the
+node set-up). Results in out/synth/local_k<K>_d<D>_g<G>_c<C>[_<style>]/ and
+.../local_child_k<K>_d<D>[_<style>]/summary.json, which also hold units per
+LFE5U-85F (the smallest of 156 MULT18X18D, 83,640 LUT4 slots and 83,640
+flip-flops over what one placed unit takes, as scripts/report_lib.py
+computes it for the global unit) and box tests per second per chip
+(units x CHILDREN x Fmax).
 """
 from __future__ import annotations
 
@@ -39,53 +52,19 @@ import subprocess
 import sys
 import threading
 import time
+from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 import contract  # noqa: E402  (scripts/contract.py: the port contract's table)
 
-
-
-
-class Target:
-    """What one flow run synthesises: the out-of-context harness (file and
-    module), the unit inside it, the parameters and the output name."""
-
-    def __init__(self, wrapper: str, top: str, dut: str, params: dict, name: str, row: dict):
-        self.wrapper = ROOT / "fpga" / wrapper
-        self.top = top
-        self.dut = dut
-        self.params = params
-        self.name = name
-        self.row = row  # the port contract's latency, fifo_depth, mult18x18d (and more)
-
-
-def fixed_target(c: int, d: int, args) -> Target:
-    name = f"{c}x{d}" + (f"_{args.mul_style}" if args.mul_style != "auto" else "") + (
-        f"_p{args.pipeline}" if args.pipeline else "")
-    try:
-        row = contract.row(c, d, args.mul_style, args.pipeline)
-    except contract.ContractError as e:
-        raise FlowError(str(e)) from None
-    params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
-              "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "PIPELINE": args.pipeline}
-    return Target("ooc_wrapper.sv", "ooc_wrapper", "pluecker_intersector", params, name, row)
-
-
-def float_target(args) -> Target:
-    try:
-        row = contract.float_unit(args.unit, args.mul_dsp)
-    except contract.ContractError as e:
-        raise FlowError(str(e)) from None
-    if args.conservative not in row["conservative"]:
-        raise FlowError(f"--conservative {args.conservative}: {row['module']} takes {row['conservative']}")
-    params = {"UNIT": args.unit, "TAG_BITS": args.tag_bits, "MUL_DSP": row["mul_dsp"]}
-    if args.unit == "float":
-        params["CONSERVATIVE"] = args.conservative
-    name = f"{args.unit}{'_cons' if args.conservative else ''}_dsp{row['mul_dsp']}"
-    row = dict(row, multiplier=f"{row['mul_dsp']} MULT18X18D per significand product")
-    return Target("ooc_float_wrapper.sv", "ooc_float_wrapper", row["module"], params, name, row)
+WRAPPER = ROOT / "fpga" / "ooc_wrapper.sv"
+TOP = "ooc_wrapper"
+DUT = "pluecker_intersector"
+# LFE5U-85F capacities (nextpnr-ecp5 --85k, report.json "utilization" ->
+# "available"; the same figures as scripts/report_lib.py).
+CAPACITY = {"MULT18X18D": 156, "TRELLIS_COMB": 83640, "TRELLIS_FF": 83640}
 DEVICE_FLAG, DEVICE = "--85k", "LFE5U-85F"
 PACKAGE = "CABGA381"
 MAX_PARALLEL = 2  # nextpnr runs at once (2-core machine)
@@ -102,6 +81,20 @@ def say(msg: str) -> None:
 
 class FlowError(RuntimeError):
     pass
+
+
+@dataclass
+class Design:
+    """One configuration to synthesise: its out-of-context wrapper (top
+    module) and parameters, and the port contract's row for it."""
+    name: str            # output directory under --out
+    top: str             # the wrapper module
+    wrapper: Path
+    dut: str             # the module under test
+    params: dict         # the wrapper's parameters
+    row: dict            # latency, fifo_depth, mult18x18d, ... (the contract's)
+    fields: dict = field(default_factory=dict)  # configuration fields of the summary
+    tests_per_clock: int = 1  # box tests per clock of one unit
 
 
 # --------------------------------------------------------------------------
@@ -143,10 +136,11 @@ def tool_version(tool: str, flag: str) -> str:
 # --------------------------------------------------------------------------
 # Sources, parameters
 
-def rtl_sources(rtl_dir: Path, dut: str) -> list[Path]:
+def rtl_sources(rtl_dir: Path, duts: list[str]) -> list[Path]:
     files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")))
-    if not any(f.stem == dut for f in files):
-        raise FlowError(f"{rtl_dir}/{dut}.sv not found (the RTL is missing)")
+    for dut in duts:
+        if not any(f.stem == dut for f in files):
+            raise FlowError(f"{rtl_dir}/{dut}.sv not found (the RTL is missing)")
     return files
 
 
@@ -167,6 +161,18 @@ def parse_widths(text: str) -> list[tuple[int, int]]:
     return pairs
 
 
+def parse_local_widths(text: str) -> list[tuple[int, int, int]]:
+    out = []
+    for item in text.replace(" ", ",").split(","):
+        if not item:
+            continue
+        m = re.fullmatch(r"(\d+)x(\d+)x(\d+)", item)
+        if not m:
+            raise FlowError(f"--local-widths: '{item}' is not KxDxG (e.g. 8x11x32)")
+        out.append((int(m.group(1)), int(m.group(2)), int(m.group(3))))
+    return out
+
+
 # --------------------------------------------------------------------------
 # Yosys
 
@@ -181,15 +187,15 @@ def yosys_value(v: int | str) -> str:
     return f'"{v}"' if isinstance(v, str) else str(v)
 
 
-def yosys_script(sources: list[Path], target: Target, outdir: Path) -> str:
+def yosys_script(sources: list[Path], design: Design, outdir: Path) -> str:
     """The Yosys script, run with outdir as working directory."""
-    files = " ".join(rel(s, outdir) for s in sources + [target.wrapper])
-    chparams = " ".join(f"-set {k} {yosys_value(v)}" for k, v in target.params.items())
+    files = " ".join(rel(s, outdir) for s in sources + [design.wrapper])
+    chparams = " ".join(f"-set {k} {yosys_value(v)}" for k, v in design.params.items())
     return "\n".join([
         "# Generated by scripts/synth.py (paths relative to this directory)",
         f"read_verilog -sv -DSYNTHESIS -DPLUECKER_ECP5 -I{rel(sources[0].parent, outdir)} {files}",
-        f"chparam {chparams} {target.top}",
-        f"synth_ecp5 -top {target.top} -json netlist.json",
+        f"chparam {chparams} {design.top}",
+        f"synth_ecp5 -top {design.top} -json netlist.json",
         "tee -q -o yosys_stat.json stat -json",
         "",
     ])
@@ -210,7 +216,7 @@ def design_sources(src: str) -> list[str]:
     return [e for e in src.split("|") if e and not e.startswith("/share/")]
 
 
-def netlist_info(netlist_path: Path, target: Target) -> tuple[dict[str, str], int]:
+def netlist_info(netlist_path: Path, design: Design) -> tuple[dict[str, str], int]:
     """(cell name -> type, number of flip-flops of the harness).
 
     A flip-flop belongs to the harness when its Yosys 'src' attribute points
@@ -219,24 +225,24 @@ def netlist_info(netlist_path: Path, target: Target) -> tuple[dict[str, str], in
     blocks)."""
     with open(netlist_path) as f:
         nl = json.load(f)
-    top = nl["modules"][target.top]
+    top = nl["modules"][design.top]
     types = {}
     harness_ff = 0
     for name, cell in top["cells"].items():
         types[name] = cell["type"]
         if cell["type"] == "TRELLIS_FF":
             srcs = design_sources(cell.get("attributes", {}).get("src", ""))
-            if srcs and all(target.wrapper.name in s for s in srcs):
+            if srcs and all(design.wrapper.name in s for s in srcs):
                 harness_ff += 1
             elif not srcs and not re.match(r"^(g_\w+\.)?u_dut\.", name):
                 harness_ff += 1  # e.g. output flops merged with a RAM read port
     return types, harness_ff
 
 
-def run_yosys(yosys: str, sources: list[Path], target: Target, outdir: Path) -> dict:
+def run_yosys(yosys: str, sources: list[Path], design: Design, outdir: Path) -> dict:
     outdir.mkdir(parents=True, exist_ok=True)
     script = outdir / "synth.ys"
-    script.write_text(yosys_script(sources, target, outdir))
+    script.write_text(yosys_script(sources, design, outdir))
     log = outdir / "yosys.log"
     t0 = time.monotonic()
     res = subprocess.run([yosys, "-q", "-l", log.name, "-s", script.name],
@@ -247,7 +253,7 @@ def run_yosys(yosys: str, sources: list[Path], target: Target, outdir: Path) -> 
         raise FlowError(f"yosys failed (exit {res.returncode}); see {log}\n{res.stderr.strip()}\n{tail}")
     with open(outdir / "yosys_stat.json") as f:
         cells = cells_by_type(json.load(f))
-    types, harness_ff = netlist_info(outdir / "netlist.json", target)
+    types, harness_ff = netlist_info(outdir / "netlist.json", design)
     return {"seconds": round(seconds, 1), "cells": cells, "harness_ff": harness_ff,
             "cell_types": types}
 
@@ -256,7 +262,7 @@ def run_yosys(yosys: str, sources: list[Path], target: Target, outdir: Path) -> 
 # nextpnr
 
 def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int,
-                freq: float, top: str) -> list[str]:
+                freq: float, top: str = TOP) -> list[str]:
     """nextpnr command line, run with rundir as working directory."""
     return [nextpnr, DEVICE_FLAG, "--package", PACKAGE, "--speed", str(speed),
             "--seed", str(seed), "--json", rel(netlist, rundir), "--top", top,
@@ -405,8 +411,24 @@ def utilisation(ys: dict, pnr_runs: list[dict]) -> dict:
     return u
 
 
-def write_summary(base: Path, target: Target, args, ys: dict, runs: list[dict], tools: dict) -> dict:
-    row = target.row
+def chip_figures(u: dict, fmax: dict, tests_per_clock: int) -> dict:
+    """Units per LFE5U-85F (the smallest of the capacity over what one placed
+    unit takes, for MULT18X18D, LUT4 slots and flip-flops) and box tests per
+    second per chip at each speed grade's median Fmax."""
+    placed = u.get("placed", {})
+    need = {"MULT18X18D": u.get("MULT18X18D", 0), "TRELLIS_COMB": placed.get("TRELLIS_COMB"),
+            "TRELLIS_FF": placed.get("TRELLIS_FF")}
+    limits = {k: CAPACITY[k] // v for k, v in need.items() if v}
+    if not placed or not limits:
+        return {}
+    units = min(limits.values())
+    return {"units_per_chip": units, "units_limits": limits, "limited_by": min(limits, key=limits.get),
+            "box_tests_per_clock": tests_per_clock,
+            "box_tests_per_s_per_chip": {sp: round(f["median"] * 1e6 * units * tests_per_clock)
+                                         for sp, f in fmax.items()}}
+
+
+def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict) -> dict:
     by_speed: dict[str, dict] = {}
     limits: dict[str, dict] = {}
     for speed in args.speed_list:
@@ -416,24 +438,25 @@ def write_summary(base: Path, target: Target, args, ys: dict, runs: list[dict], 
         by_speed[str(speed)] = fmax_stats([r["fmax"] for r in ok])
         worst = min(ok, key=lambda r: r["fmax"])
         limits[str(speed)] = dict(worst["critical_path"] or {}, seed=worst["seed"])
-    p = target.params
+    row = design.row
+    u = utilisation(ys, runs)
     summary = {
-        "design": target.dut,
-        "unit": args.unit,
-        "name": target.name,
-        "harness": f"{target.top} (fpga/{target.wrapper.name}, registered ports)",
-        "coord_bits": p.get("COORD_BITS"), "dir_bits": p.get("DIR_BITS"), "tag_bits": args.tag_bits,
+        "design": design.dut,
+        "harness": f"{design.top} (fpga/{design.wrapper.name}, registered ports)",
+        **design.fields,
+        "tag_bits": args.tag_bits,
         "conservative": args.conservative,
-        "mul_style": p.get("MUL_STYLE"), "pipeline": p.get("PIPELINE"), "mul_dsp": p.get("MUL_DSP"),
-        "multiplier": row["multiplier"],
-        "latency": row["latency"], "fifo_depth": row["fifo_depth"],
+        "mul_style": design.params.get("MUL_STYLE"),
+        **{k: row[k] for k in ("multiplier", "frame_multiplier", "child_multiplier") if k in row},
+        "latency": row.get("latency"), "fifo_depth": row.get("fifo_depth"),
         "device": DEVICE, "package": PACKAGE, "out_of_context": True,
         "target_mhz": args.freq,
         "tools": tools,
         "yosys_seconds": ys["seconds"],
-        "utilisation": utilisation(ys, runs),
+        "utilisation": u,
         "yosys_cells": ys["cells"],
         "fmax_mhz": by_speed,
+        **chip_figures(u, by_speed, design.tests_per_clock),
         "critical_path": limits,
         "runs": [{k: v for k, v in r.items() if k != "utilisation"} for r in runs],
         "pnr": not args.no_pnr,
@@ -445,23 +468,26 @@ def write_summary(base: Path, target: Target, args, ys: dict, runs: list[dict], 
 
 
 def print_table(summaries: list[dict], speeds: list[int]) -> None:
-    head = f"{'unit':>13} {'LUT4':>6} {'CCU2C':>6} {'FF':>6} {'dutFF':>6} {'MULT':>5} {'lat':>4}"
+    head = f"{'config':>22} {'LUT4':>6} {'CCU2C':>6} {'FF':>6} {'dutFF':>6} {'MULT':>5} {'lat':>4}"
     for s in speeds:
         head += f"  {'Fmax s' + str(s) + ' med [min-max]':>26}"
     print("\n" + head)
     for sm in summaries:
         u = sm["utilisation"]
         lat = str(sm["latency"])
-        line = (f"{sm['name']:>13} {u['LUT4']:>6} {u['CCU2C']:>6} "
+        line = (f"{sm['config']:>22} {u['LUT4']:>6} {u['CCU2C']:>6} "
                 f"{u['TRELLIS_FF']:>6} {u['dut_ff']:>6} {u['MULT18X18D']:>5} {lat:>4}")
         for s in speeds:
             f = sm["fmax_mhz"].get(str(s))
             cell = (f"{f['median']:.1f} [{f['min']:.1f}-{f['max']:.1f}]" if f else "-")
             line += f"  {cell:>26}"
+        if sm.get("units_per_chip"):
+            chip = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in sm["box_tests_per_s_per_chip"].items())
+            line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
         print(line)
     for sm in summaries:
         for s, cp in sm["critical_path"].items():
-            print(f"{sm['name']} speed {s} (seed {cp['seed']}) limit: "
+            print(f"{sm['config']} speed {s} (seed {cp['seed']}) limit: "
                   f"{cp['delay_ns']} ns ({cp['logic_ns']} logic, {cp['routing_ns']} routing): "
                   f"{cp['cell_chain']}")
             print(f"    {cp['source_cell']} -> {cp['sink_cell']}.{cp['sink_port']}")
@@ -471,24 +497,84 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
 
 # --------------------------------------------------------------------------
 
-def flow_one(target: Target, args, tools: dict, yosys: str, nextpnr: str | None, rtl_dir: Path) -> dict:
+def global_design(c: int, d: int, args) -> Design:
+    name = f"{c}x{d}" + (f"_{args.mul_style}" if args.mul_style != "auto" else "") + (
+        f"_p{args.pipeline}" if args.pipeline else "")
     # LATENCY, FIFO depth and the DSP count from the port contract (the RTL
     # checks at elaboration that it derives the same).
-    row = target.row
-    sources = rtl_sources(rtl_dir, target.dut)
-    base = Path(args.out) / target.name
-    tag = f"[{target.name}]"
-    say(f"{tag} yosys synth_ecp5 of {target.dut} ({', '.join(s.name for s in sources)}) ...")
-    ys = run_yosys(yosys, sources, target, base)
+    try:
+        row = contract.row(c, d, args.mul_style, args.pipeline)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
+              "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "PIPELINE": args.pipeline}
+    return Design(name, TOP, WRAPPER, DUT, params, row,
+                  {"config": f"{c}x{d}", "unit": "fixed", "name": name, "coord_bits": c, "dir_bits": d,
+                   "pipeline": args.pipeline})
+
+
+FLOAT_WRAPPER = ROOT / "fpga" / "ooc_float_wrapper.sv"
+
+
+def float_design(args) -> Design:
+    try:
+        row = contract.float_unit(args.unit, args.mul_dsp)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    if args.conservative not in row["conservative"]:
+        raise FlowError(f"--conservative {args.conservative}: {row['module']} takes {row['conservative']}")
+    params = {"UNIT": args.unit, "TAG_BITS": args.tag_bits, "MUL_DSP": row["mul_dsp"]}
+    if args.unit == "float":
+        params["CONSERVATIVE"] = args.conservative
+    name = f"{args.unit}{'_cons' if args.conservative else ''}_dsp{row['mul_dsp']}"
+    row = dict(row, multiplier=f"{row['mul_dsp']} MULT18X18D per significand product")
+    return Design(name, "ooc_float_wrapper", FLOAT_WRAPPER, row["module"], params, row,
+                  {"config": name, "unit": args.unit, "name": name, "mul_dsp": row["mul_dsp"]})
+
+
+LOCAL_WRAPPER = ROOT / "fpga" / "ooc_local_wrapper.sv"
+LOCAL_CHILD_WRAPPER = ROOT / "fpga" / "ooc_local_child_wrapper.sv"
+
+
+def local_design(k: int, d: int, g: int, args) -> Design:
+    style = "" if args.mul_style == "auto" else f"_{args.mul_style}"
+    try:
+        row = contract.local_row(k, d, g, args.mul_style, args.children)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    fields = {"box_bits": k, "dir_bits": d, "grid_bits": g}
+    if args.part == "child":
+        # The child datapath alone: no FIFO, its own latency and DSP count.
+        child = {"latency": None, "fifo_depth": None, "child_multiplier": row["child_multiplier"],
+                 "mult18x18d": row["child_mult18x18d"]}
+        params = {"BOX_BITS": k, "DIR_BITS": d, "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style}
+        return Design(f"local_child_k{k}_d{d}{style}", "ooc_local_child_wrapper", LOCAL_CHILD_WRAPPER,
+                      "pluecker_local_child", params, child,
+                      {"config": f"child K{k} D{d}", "part": "child", **fields})
+    params = {"BOX_BITS": k, "DIR_BITS": d, "GRID_BITS": g, "TAG_BITS": args.tag_bits,
+              "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "CHILDREN": args.children}
+    return Design(f"local_k{k}_d{d}_g{g}_c{args.children}{style}", "ooc_local_wrapper", LOCAL_WRAPPER,
+                  "pluecker_local_intersector", params, row,
+                  {"config": f"K{k} D{d} G{g} x{args.children}", "part": "unit", **fields,
+                   "children": args.children}, tests_per_clock=args.children)
+
+
+def flow_one(design: Design, args, tools: dict, yosys: str, nextpnr: str | None,
+             sources: list[Path]) -> dict:
+    base = Path(args.out) / design.name
+    tag = f"[{design.name}]"
+    row = design.row
+    say(f"{tag} yosys synth_ecp5 ({', '.join(s.name for s in sources)}) ...")
+    ys = run_yosys(yosys, sources, design, base)
     cells = ys["cells"]
     say(f"{tag} yosys done in {ys['seconds']:.0f} s: LUT4 {cells.get('LUT4', 0)}, "
         f"CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
         f"(harness {ys['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}")
     if cells.get("MULT18X18D", 0) != row["mult18x18d"]:
         raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
-                        f"says {row['mult18x18d']} (multipliers: {row['multiplier']})")
-    say(f"{tag} latency {row['latency']} cycles, FIFO depth {row['fifo_depth']}, "
-        f"multipliers: {row['multiplier']} (port contract)")
+                        f"says {row['mult18x18d']}")
+    say(f"{tag} latency {row.get('latency')} cycles, FIFO depth {row.get('fifo_depth')}, "
+        f"{row['mult18x18d']} MULT18X18D (port contract)")
 
     runs: list[dict] = []
     if not args.no_pnr:
@@ -499,7 +585,7 @@ def flow_one(target: Target, args, tools: dict, yosys: str, nextpnr: str | None,
                 jobs.append({"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                              "types": ys["cell_types"],
                              "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir,
-                                                speed, seed, args.freq, target.top)})
+                                                speed, seed, args.freq, design.top)})
         workers = max(1, min(args.jobs, MAX_PARALLEL, len(jobs)))
         say(f"{tag} nextpnr: {len(jobs)} runs (speeds {args.speeds}, seeds 1..{args.seeds}, "
             f"target {args.freq:g} MHz), {workers} at a time")
@@ -517,7 +603,7 @@ def flow_one(target: Target, args, tools: dict, yosys: str, nextpnr: str | None,
                         f"{r['fmax']:.1f} MHz in {r['seconds']:.0f} s")
                 runs.append(r)
         runs.sort(key=lambda r: (r["speed"], r["seed"]))
-    summary = write_summary(base, target, args, ys, runs, tools)
+    summary = write_summary(base, design, args, ys, runs, tools)
     say(f"{tag} summary: {base / 'summary.json'}")
     return summary
 
@@ -532,7 +618,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "smits: pluecker_smits_intersector")
     p.add_argument("--tag-bits", type=int, default=16)
     p.add_argument("--conservative", type=int, choices=(0, 1), default=None,
-                   help="CONSERVATIVE (default 1 for fixed, 0 for float)")
+                   help="CONSERVATIVE (default 1 for fixed and --local, 0 for float)")
     p.add_argument("--mul-dsp", type=int, default=None,
                    help="MUL_DSP of a binary32 unit (default the port contract's)")
     lim = contract.load()["limits"]
@@ -546,8 +632,15 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")
     p.add_argument("--smoke", action="store_true", help="one seed, speed 8 (quick check)")
     p.add_argument("--rtl", default=str(ROOT / "rtl"), help="RTL directory")
+    p.add_argument("--local", action="store_true", help="the local unit (pluecker_local_intersector)")
+    p.add_argument("--local-widths", default="8x11x32", help="--local: KxDxG list, e.g. 8x11x32,10x13x32")
+    p.add_argument("--children", type=int, default=1, help="--local: CHILDREN (1 or 2)")
+    p.add_argument("--part", choices=("unit", "child"), default="unit",
+                   help="--local: the unit, or its child datapath alone")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
+    if args.local and args.unit != "fixed":
+        p.error("--local is the local fixed-point unit; it takes no --unit " + args.unit)
     if args.conservative is None:
         args.conservative = 1 if args.unit == "fixed" else 0
     if args.unit == "fixed" and args.mul_dsp is not None:
@@ -570,12 +663,15 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str]) -> int:
     args = parse_args(argv)
     try:
-        if args.unit == "fixed":
+        if args.local:
+            designs = [local_design(k, d, g, args) for k, d, g in parse_local_widths(args.local_widths)]
+        elif args.unit != "fixed":
+            designs = [float_design(args)]
+        else:
             pairs = parse_widths(args.widths) if args.widths else parse_widths(
                 f"{args.coord_bits}x{args.dir_bits}")
-            targets = [fixed_target(c, d, args) for c, d in pairs]
-        else:
-            targets = [float_target(args)]
+            designs = [global_design(c, d, args) for c, d in pairs]
+        sources = rtl_sources(Path(args.rtl), sorted({dsg.dut for dsg in designs}))
         yosys = yosys_tool()
         nextpnr = nextpnr_tool()
         if not yosys:
@@ -586,7 +682,7 @@ def main(argv: list[str]) -> int:
         if not args.no_pnr:
             tools["nextpnr"] = tool_version(nextpnr, "--version")
         t0 = time.monotonic()
-        summaries = [flow_one(t, args, tools, yosys, nextpnr, Path(args.rtl)) for t in targets]
+        summaries = [flow_one(dsg, args, tools, yosys, nextpnr, sources) for dsg in designs]
     except FlowError as e:
         print(f"synth: error: {e}", file=sys.stderr)
         return 1

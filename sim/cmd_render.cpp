@@ -5,17 +5,10 @@
 // `pluecker render` (pluecker/app/render_options.hpp), so the image equals
 // `pluecker render --test fixed` with the same options and widths.
 #include "commands.hpp"
+#include "hil_render.hpp"
 #include "rtl_engine.hpp"
 
-#include "pluecker/app/render_options.hpp"
-
-#include "pluecker/render.hpp"
-
-#include <cerrno>
-#include <chrono>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 
 namespace pluecker::sim {
 namespace {
@@ -52,31 +45,23 @@ int cmd_render(const std::vector<std::string>& argv) {
 
     // The build's configuration fills in what the command line leaves out.
     const FixedFormat built = built_format();
-    std::vector<std::string> av = argv;
-    if (!given.has("test")) av.insert(av.end(), {"--test", "fixed"});
-    if (!given.has("coord-bits")) av.insert(av.end(), {"--coord-bits", std::to_string(built.coord_bits)});
-    if (!given.has("dir-bits")) av.insert(av.end(), {"--dir-bits", std::to_string(built.dir_bits)});
-    if (!given.has("mode")) av.insert(av.end(), {"--mode", mode_name(built.mode)});
-    const app::Args a(av, options, switches);
-    const auto s = app::make_setup(a);
-    if (s->opts.order != ChildOrder::Fixed && s->opts.order != ChildOrder::Dsa)
-        throw InputError("option --order: the batched traversal takes fixed or dsa");
-    s->opts.progress = !a.has("quiet");
-    const std::string out = a.get("out", "render.png");
+    const app::Args a(with_defaults(argv, given,
+                                    {{"test", "fixed"},
+                                     {"coord-bits", std::to_string(built.coord_bits)},
+                                     {"dir-bits", std::to_string(built.dir_bits)},
+                                     {"mode", mode_name(built.mode)}}),
+                      options, switches);
+    const auto s = batched_setup(a);
 
     RtlIntersector rtl;
     RtlBoxEngine engine(rtl);
     RenderStats st;
-    const auto t0 = std::chrono::steady_clock::now();
-    const Image img = render_batched(*s->scene, s->opts, engine, st);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    write_png(img, out);
-
     const StreamStats& rs = rtl.stats();
-    const double qps = engine.rtl_seconds() > 0 ? static_cast<double>(engine.queries()) / engine.rtl_seconds() : 0;
-    if (a.has("stats")) {
-        nlohmann::json j = stats_json(*s->scene, s->bvh, s->build, s->opts, st);
-        j["rtl"] = {
+    auto qps = [&] {
+        return engine.rtl_seconds() > 0 ? static_cast<double>(engine.queries()) / engine.rtl_seconds() : 0.0;
+    };
+    const double seconds = render_through(*s, a, engine, st, [&](double wall) {
+        return nlohmann::json{
             {"harness", "pluecker_sim"},
             {"tag_bits", SIM_TAG_BITS},
             {"queries", engine.queries()},
@@ -86,21 +71,16 @@ int cmd_render(const std::vector<std::string>& argv) {
             {"stall_cycles", rs.stall_cycles},
             {"max_in_flight", rs.max_in_flight},
             {"rtl_seconds", engine.rtl_seconds()},
-            {"queries_per_second", qps},
-            {"wall_seconds", seconds},
+            {"queries_per_second", qps()},
+            {"wall_seconds", wall},
         };
-        const std::string path = a.get("stats", "");
-        std::ofstream f(path);
-        if (!f) throw InputError("option --stats: cannot write '" + path + "' (" + std::strerror(errno) + ")");
-        f << j.dump(2) << "\n";
-        if (!f) throw InputError("option --stats: cannot write '" + path + "'");
-    }
+    });
     std::printf("render %s %dx%d (%s, order %s, build %s): %llu box queries in %llu batches through the RTL, "
                 "%llu cycles, %.3f M queries/s in the RTL loop, %.2f s in all, %llu mismatches\n",
                 s->mesh.name.c_str(), s->opts.width, s->opts.height, build_name().c_str(), order_name(s->opts.order),
                 method_name(s->build), static_cast<unsigned long long>(engine.queries()),
                 static_cast<unsigned long long>(engine.batches()), static_cast<unsigned long long>(rs.cycles),
-                qps / 1e6, seconds, static_cast<unsigned long long>(engine.mismatches()));
+                qps() / 1e6, seconds, static_cast<unsigned long long>(engine.mismatches()));
     return engine.mismatches() == 0 ? 0 : 1;
 }
 

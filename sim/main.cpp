@@ -2,14 +2,12 @@
 // `pluecker_sim`: the Verilator harness of rtl/pluecker_intersector.sv,
 // linked with the golden model library.
 #include "commands.hpp"
+#include "harness_main.hpp"
 #include "rtl_intersector.hpp"
 
 #include "pluecker/app/names.hpp"
 
-#include <cstdio>
-#include <exception>
 #include <string>
-#include <vector>
 
 namespace pluecker::sim {
 
@@ -56,29 +54,6 @@ constexpr const char* kUsage =
 
 int main(int argc, char** argv) {
     using namespace pluecker::sim;
-    Verilated::commandArgs(1, argv);  // no plusargs reach the model
-    if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-        std::fputs(kUsage, argc < 2 ? stderr : stdout);
-        if (argc >= 2) std::printf("built for: %s, TAG_BITS %d\n", build_name().c_str(), SIM_TAG_BITS);
-        return argc < 2 ? 2 : 0;
-    }
-    const std::string cmd = argv[1];
-    const std::vector<std::string> rest(argv + 2, argv + argc);
-    try {
-        if (cmd == "query") return cmd_query(rest);
-        if (cmd == "render") return cmd_render(rest);
-        if (cmd == "bench") return cmd_bench(rest);
-        if (cmd == "gen") return cmd_gen(rest);
-        std::fprintf(stderr, "pluecker_sim: unknown command '%s'\n%s", cmd.c_str(), kUsage);
-        return 2;
-    } catch (const pluecker::InputError& e) {
-        std::fprintf(stderr, "pluecker_sim %s: error: %s\n", cmd.c_str(), e.what());
-        return 2;
-    } catch (const ProtocolError& e) {
-        std::fprintf(stderr, "pluecker_sim %s: RTL protocol error: %s\n", cmd.c_str(), e.what());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pluecker_sim %s: internal error: %s\n", cmd.c_str(), e.what());
-        return 1;
-    }
+    return harness_main(argc, argv, "pluecker_sim", kUsage, build_name() + ", TAG_BITS " + std::to_string(SIM_TAG_BITS),
+                        {{"query", cmd_query}, {"render", cmd_render}, {"bench", cmd_bench}, {"gen", cmd_gen}});
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The Verilated RTL intersector (rtl/pluecker_intersector.sv) behind a small
-// streaming interface: queries go in with valid/ready, one a clock when the
-// RTL is ready, answers come back matched by tag.
+// The Verilated RTL intersector (rtl/pluecker_intersector.sv) behind the
+// streaming interface of rtl_stream.hpp: queries go in with valid/ready, one
+// a clock when the RTL is ready, answers come back matched by tag.
 //
 // Widths and mode are fixed when the harness is built (sim/build.sh passes
 // them to Verilator as -G parameters and to this code as SIM_* macros), so
@@ -13,14 +13,12 @@
 #pragma once
 
 #include "Vpluecker_intersector.h"
-#include "stream_rtl.hpp"
+#include "rtl_stream.hpp"
 
 #include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 
-#include <cstddef>
 #include <cstdint>
-#include <memory>
 
 #ifndef SIM_COORD_BITS
 #error "SIM_COORD_BITS must be defined (sim/build.sh passes it)"
@@ -59,41 +57,20 @@ struct PackedQuery {
     PortType<decltype(Vpluecker_intersector::box_max_i)> hi{};
     std::uint8_t cls = 0;
     std::uint8_t end_valid = 0;
+    void apply(Vpluecker_intersector& t) const;
 };
 
 // Packs a set-up ray and a quantised box (widths of built_format()) with the
 // port contract's pack_query; InputError when an operand does not fit.
 PackedQuery pack_query(const FixedRay& r, const FixedBox& b);
 
-class RtlIntersector {
+// The intersector: RtlStream (rtl_stream.hpp) on the Verilated model. The
+// constructor checks the Verilated ports' widths against the port contract
+// and measures the latency of one query against its LATENCY.
+class RtlIntersector : public RtlStream<Vpluecker_intersector, PackedQuery> {
 public:
     static constexpr int kTagBits = SIM_TAG_BITS;
-    using Stream = StreamRtl<Vpluecker_intersector, kTagBits>;
-    static constexpr std::uint64_t kTagMask = Stream::kTagMask;
-    static constexpr std::uint64_t kMaxInFlight = Stream::kMaxInFlight;
-
     RtlIntersector();
-
-    // out_ready_i is high with probability p_ready each cycle (1: always),
-    // drawn from a PRNG seeded with `seed`.
-    void set_backpressure(double p_ready, std::uint64_t seed) { rtl_->set_backpressure(p_ready, seed); }
-
-    // Streams q[0..n) back to back and stores the answer of q[i] in hits[i]
-    // (0 or 1). The tag of a query is its index in the stream of all queries
-    // this intersector has seen, modulo 2^TAG_BITS. Throws ProtocolError.
-    void run(const PackedQuery* q, std::size_t n, std::uint8_t* hits);
-
-    const StreamStats& stats() const { return rtl_->stats(); }
-    // Cycles from the input to the output handshake of one query, measured
-    // at construction (it equals the port contract's LATENCY, or the
-    // constructor throws ProtocolError).
-    int measured_latency() const { return latency_; }
-    // True when the harness calls Verilator's scheduler directly.
-    bool direct_eval() const { return rtl_->direct_eval(); }
-
-private:
-    std::unique_ptr<Stream> rtl_;
-    int latency_ = 0;
 };
 
 }  // namespace pluecker::sim

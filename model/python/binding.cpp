@@ -13,8 +13,11 @@
 #include "pluecker/fixed.hpp"
 #include "pluecker/float_contract.hpp"
 #include "pluecker/geometry.hpp"
+#include "pluecker/local.hpp"
+#include "pluecker/local_contract.hpp"
 #include "pluecker/query.hpp"
 #include "pluecker/querygen.hpp"
+#include "pluecker/render.hpp"
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -72,11 +75,14 @@ std::string array_repr(const std::array<T, 3>& v) {
     return s.str();
 }
 
-// A port value (contract.hpp's 32-bit words, least significant first) as a
-// Python int: up to 72 bits, so it is assembled word by word.
-py::int_ port_int(const PortWords& w) {
+
+// A port value (32-bit words, least significant first: contract.hpp's
+// PortWords, local_contract.hpp's NodeRayWords) as a Python int, assembled
+// word by word.
+template <std::size_t N>
+py::int_ port_int(const std::array<std::uint32_t, N>& w) {
     py::object acc = py::int_(0);
-    for (std::size_t k = w.size(); k-- > 0;) acc = (acc << py::int_(32)) | py::int_(w[k]);
+    for (std::size_t k = N; k-- > 0;) acc = (acc << py::int_(32)) | py::int_(w[k]);
     return py::int_(acc);
 }
 
@@ -148,6 +154,133 @@ FixedFormat make_format(int coord_bits, int dir_bits, const py::object& mode) {
         throw InputError("mode must be a FixedMode or one of 'conservative', 'nearest'");
     f.validate();
     return f;
+}
+
+// --- the local frames (local.hpp, local_contract.hpp) ------------------------
+
+LocalFormat make_local_format(int box_bits, int dir_bits, int grid_bits, const py::object& mode) {
+    LocalFormat f;
+    f.box_bits = box_bits;
+    f.dir_bits = dir_bits;
+    f.grid_bits = grid_bits;
+    if (py::isinstance<py::str>(mode))
+        f.mode = parse_fixed_mode(mode.cast<std::string>());
+    else if (py::isinstance<FixedMode>(mode))
+        f.mode = mode.cast<FixedMode>();
+    else
+        throw InputError("mode must be a FixedMode or one of 'conservative', 'nearest'");
+    f.validate();
+    return f;
+}
+
+LocalPortContract make_local_contract(int box_bits, int dir_bits, int grid_bits, int tag_bits, bool conservative,
+                                      const py::object& mul_style, int children) {
+    LocalRtlConfig c;
+    c.box_bits = box_bits;
+    c.dir_bits = dir_bits;
+    c.grid_bits = grid_bits;
+    c.tag_bits = tag_bits;
+    c.conservative = conservative;
+    c.mul_style = mul_style_arg(mul_style);
+    c.children = children;
+    return LocalPortContract(c);
+}
+
+// The port values of one local query (local_contract.hpp's pack_local_query).
+py::dict local_rtl_ports(const LocalRay& r, const LocalFrame& fr, const std::vector<LocalBox>& boxes,
+                         const LocalPortContract& c) {
+    const LocalQueryPorts p = pack_local_query(r, fr, boxes, c);
+    py::dict d;
+    d["ray_class_i"] = py::int_(p.ray_class);
+    d["ray_org_i"] = port_int(p.ray_org);
+    d["ray_dir_i"] = port_int(p.ray_dir);
+    d["ray_end_i"] = port_int(p.ray_end);
+    d["ray_end_valid_i"] = py::int_(p.ray_end_valid);
+    d["frame_org_i"] = port_int(p.frame_org);
+    d["frame_exp_i"] = py::int_(p.frame_exp);
+    d["box_min_i"] = port_int(p.box_min);
+    d["box_max_i"] = port_int(p.box_max);
+    return d;
+}
+
+// The node ray as port values of pluecker_local_frame's outputs (suffix
+// "_o") or pluecker_local_child's inputs ("_i", with the box).
+py::dict node_ray_ports(const LocalNodeRay& r, const LocalFormat& f, const char* suffix) {
+    const LocalNodeRayPorts p = pack_local_node_ray(r, f);
+    py::dict d;
+    const std::string s = suffix;
+    d[py::str("cls" + s)] = py::int_(p.cls);
+    d[py::str("dir" + s)] = port_int(p.dir);
+    d[py::str("w" + s)] = port_int(p.w);
+    d[py::str("org" + s)] = port_int(p.org);
+    d[py::str("end" + s)] = port_int(p.end);
+    d[py::str("end_valid" + s)] = py::int_(p.end_valid);
+    return d;
+}
+
+py::dict child_ports(const LocalNodeRay& r, const LocalBox& b, const LocalFormat& f) {
+    py::dict d = node_ray_ports(r, f, "_i");
+    const LocalBoxPorts p = pack_local_boxes(std::span<const LocalBox>(&b, 1), f);
+    d["box_min_i"] = port_int(p.box_min);
+    d["box_max_i"] = port_int(p.box_max);
+    return d;
+}
+
+py::dict local_class_dict(const LocalContractClass& k) {
+    py::dict d;
+    d["dir_bits"] = py::make_tuple(k.dir_lo, k.dir_hi);
+    d["grid_bits"] = py::make_tuple(k.grid_lo, k.grid_hi);
+    d["mul_style"] = mul_style_name(k.mul_style);
+    d["frame_multiplier"] = k.frame_fabric ? "lut" : "dsp";
+    d["child_multiplier"] = k.child_fabric ? "lut" : "dsp";
+    d["frame_mul_add"] = k.frame_mul_add;
+    d["child_mul_add"] = k.child_mul_add;
+    d["latency"] = k.latency;
+    d["fifo_depth"] = k.fifo_depth;
+    d["frame_mult18x18d"] = k.frame_dsp_blocks;
+    d["child_mult18x18d"] = k.child_dsp_blocks;
+    return d;
+}
+
+// A software engine that also records every query it answers (the
+// traversal's LocalBoxQuery stream, in the order the driver issues it).
+class RecordingLocalEngine final : public LocalBoxEngine {
+public:
+    RecordingLocalEngine(const LocalFormat& f, std::size_t limit) : inner_(f), limit_(limit) {}
+    void test(std::span<const LocalBoxQuery> batch, std::span<std::uint8_t> hits) override {
+        inner_.test(batch, hits);
+        for (const LocalBoxQuery& q : batch)
+            if (limit_ == 0 || queries.size() < limit_) queries.push_back(q);
+    }
+    std::vector<LocalBoxQuery> queries;
+
+private:
+    SoftwareLocalEngine inner_;
+    std::size_t limit_;
+};
+
+// The box queries of a small local-frame render (render_batched, dsa order):
+// (ray, frame, box, node) tuples in issue order.
+py::list local_render_queries(const std::string& scene, int size, const LocalFormat& f, std::size_t limit,
+                              const std::string& frames, const std::string& cells) {
+    f.validate();
+    if (size < 1 || size > 4096) throw InputError("size " + std::to_string(size) + " is outside 1..4096");
+    RenderOptions opts;
+    opts.width = opts.height = size;
+    opts.test = BoxTestKind::Local;
+    opts.order = ChildOrder::Dsa;
+    opts.local = f;
+    if (frames != "parent" && frames != "own") throw InputError("frames must be 'parent' or 'own'");
+    if (cells != "axis" && cells != "uniform") throw InputError("cells must be 'axis' or 'uniform'");
+    opts.local_build.parent_origin = frames == "parent";
+    opts.local_build.uniform = cells == "uniform";
+    const std::unique_ptr<RenderSetup> s = make_render_setup(scene, BuildOptions{}, opts);
+    RecordingLocalEngine engine(f, limit);
+    RenderStats st;
+    render_batched(*s->scene, s->opts, engine, st);
+    py::list out;
+    for (const LocalBoxQuery& q : engine.queries) out.append(py::make_tuple(q.ray, q.frame, q.box, q.node));
+    return out;
 }
 
 Query make_query(const Ray& r, const Box& b) { return Query{r, b}; }
@@ -613,4 +746,207 @@ PYBIND11_MODULE(pluecker_py, m) {
         for (const ContractClass& k : contract_classes()) out.append(class_dict(k));
         return out;
     }, "The configuration classes of the port contract (as rtl/pluecker_contract.json lists them)");
+
+    // --- local frames (local.hpp) and the local unit's port contract -------
+    py::class_<LocalFormat>(m, "LocalFormat", "Local-frame format: K, D, G and the rounding mode (see local.hpp)")
+        .def(py::init(&make_local_format), py::arg("box_bits") = LocalContractDefaults::kBoxBits,
+             py::arg("dir_bits") = LocalContractDefaults::kDirBits,
+             py::arg("grid_bits") = LocalContractDefaults::kGridBits, py::arg("mode") = FixedMode::Conservative)
+        .def_readonly("box_bits", &LocalFormat::box_bits)
+        .def_readonly("dir_bits", &LocalFormat::dir_bits)
+        .def_readonly("grid_bits", &LocalFormat::grid_bits)
+        .def_readonly("mode", &LocalFormat::mode)
+        .def("validate", &LocalFormat::validate)
+        .def("box_max", &LocalFormat::box_max)
+        .def("max_exp", &LocalFormat::max_exp)
+        .def("w_max", &LocalFormat::w_max)
+        .def("w_min", &LocalFormat::w_min)
+        .def("grid_min", &LocalFormat::grid_min)
+        .def("grid_max", &LocalFormat::grid_max)
+        .def("range_box", &LocalFormat::range_box)
+        .def("range_text", &LocalFormat::range_text)
+        .def("__repr__", [](const LocalFormat& f) {
+            return "LocalFormat(box_bits=" + std::to_string(f.box_bits) + ", dir_bits=" + std::to_string(f.dir_bits) +
+                   ", grid_bits=" + std::to_string(f.grid_bits) + ", mode='" + mode_name(f.mode) + "')";
+        });
+
+    py::class_<LocalRay>(m, "LocalRay", "A ray at the global width G, as local_setup_ray gives it")
+        .def(py::init([](int cls, const std::array<i64, 3>& org, const std::array<i64, 3>& dir_g,
+                         const std::array<i64, 3>& end, bool has_end) {
+                 if (cls < 0 || cls > 7) throw InputError("ray class " + std::to_string(cls) + " is outside 0..7");
+                 LocalRay r;
+                 r.cls = static_cast<RayClass>(cls);
+                 r.org = org;
+                 r.dir_g = dir_g;
+                 r.end = end;
+                 r.has_end = has_end;
+                 return r;
+             }),
+             py::arg("cls") = 0, py::arg("org") = std::array<i64, 3>{}, py::arg("dir_g") = std::array<i64, 3>{},
+             py::arg("end") = std::array<i64, 3>{}, py::arg("has_end") = false)
+        .def_property_readonly("cls", [](const LocalRay& r) { return static_cast<int>(r.cls); })
+        .def_readonly("org", &LocalRay::org)
+        .def_readonly("dir_g", &LocalRay::dir_g)
+        .def_readonly("end", &LocalRay::end)
+        .def_readonly("has_end", &LocalRay::has_end)
+        .def_readonly("clipped", &LocalRay::clipped)
+        .def("__eq__", [](const LocalRay& a, const LocalRay& b) {
+            return a.cls == b.cls && a.org == b.org && a.dir_g == b.dir_g && a.end == b.end && a.has_end == b.has_end;
+        })
+        .def("__repr__", [](const LocalRay& r) {
+            return "LocalRay(cls=" + std::to_string(r.cls) + ", org=" + array_repr(r.org) + ", dir_g=" +
+                   array_repr(r.dir_g) + ", end=" + array_repr(r.end) + ", has_end=" + (r.has_end ? "True" : "False") +
+                   ")";
+        });
+
+    py::class_<LocalFrame>(m, "LocalFrame", "A node's frame: origin on the grid, cell 2^exp grid units per axis")
+        .def(py::init([](const std::array<i64, 3>& origin, const std::array<int, 3>& exp) {
+                 return LocalFrame{origin, exp};
+             }),
+             py::arg("origin") = std::array<i64, 3>{}, py::arg("exp") = std::array<int, 3>{})
+        .def_readonly("origin", &LocalFrame::origin)
+        .def_readonly("exp", &LocalFrame::exp)
+        .def("__eq__", [](const LocalFrame& a, const LocalFrame& b) { return a == b; })
+        .def("__repr__", [](const LocalFrame& f) {
+            return "LocalFrame(origin=" + array_repr(f.origin) + ", exp=" + array_repr(f.exp) + ")";
+        });
+
+    py::class_<LocalBox>(m, "LocalBox", "A box as K-bit offsets in a frame")
+        .def(py::init([](const std::array<i64, 3>& lo, const std::array<i64, 3>& hi) { return LocalBox{lo, hi}; }),
+             py::arg("lo") = std::array<i64, 3>{}, py::arg("hi") = std::array<i64, 3>{})
+        .def_readonly("lo", &LocalBox::lo)
+        .def_readonly("hi", &LocalBox::hi)
+        .def("__eq__", [](const LocalBox& a, const LocalBox& b) { return a == b; })
+        .def("__repr__",
+             [](const LocalBox& b) { return "LocalBox(lo=" + array_repr(b.lo) + ", hi=" + array_repr(b.hi) + ")"; });
+
+    py::class_<LocalNodeRay>(m, "LocalNodeRay", "The ray in one node's frame: the child datapath's ray operands")
+        .def(py::init([](int cls, const std::array<i64, 3>& dir, const std::array<i64, 6>& w,
+                         const std::array<i64, 3>& org, const std::array<i64, 3>& end, bool has_end) {
+                 if (cls < 0 || cls > 7) throw InputError("ray class " + std::to_string(cls) + " is outside 0..7");
+                 LocalNodeRay r;
+                 r.cls = static_cast<RayClass>(cls);
+                 r.dir = dir;
+                 r.w = w;
+                 r.org = org;
+                 r.end = end;
+                 r.has_end = has_end;
+                 return r;
+             }),
+             py::arg("cls") = 0, py::arg("dir") = std::array<i64, 3>{}, py::arg("w") = std::array<i64, 6>{},
+             py::arg("org") = std::array<i64, 3>{}, py::arg("end") = std::array<i64, 3>{},
+             py::arg("has_end") = false)
+        .def_property_readonly("cls", [](const LocalNodeRay& r) { return static_cast<int>(r.cls); })
+        .def_readonly("dir", &LocalNodeRay::dir)
+        .def_readonly("w", &LocalNodeRay::w)
+        .def_readonly("org", &LocalNodeRay::org)
+        .def_readonly("end", &LocalNodeRay::end)
+        .def_readonly("has_end", &LocalNodeRay::has_end)
+        .def("__eq__", [](const LocalNodeRay& a, const LocalNodeRay& b) { return a == b; })
+        .def("__repr__", [](const LocalNodeRay& r) {
+            std::ostringstream s;
+            s << "LocalNodeRay(cls=" << static_cast<int>(r.cls) << ", dir=" << array_repr(r.dir) << ", w=(";
+            for (std::size_t k = 0; k < r.w.size(); ++k) s << (k ? ", " : "") << r.w[k];
+            s << "), org=" << array_repr(r.org) << ", end=" << array_repr(r.end)
+              << ", has_end=" << (r.has_end ? "True" : "False") << ")";
+            return s.str();
+        });
+
+    m.def("local_setup_ray", &local_setup_ray, py::arg("ray"), py::arg("fmt"),
+          "The ray at the global width (any finite origin: one outside the grid's range is clipped exactly "
+          "onto it), or None when the segment never meets the range");
+    m.def("local_setup_end", [](LocalRay r, const Ray& ray, const LocalFormat& f) {
+        f.validate();
+        local_setup_end(r, ray, f);
+        return r;
+    }, py::arg("local_ray"), py::arg("ray"), py::arg("fmt"),
+          "A copy of local_ray with the segment end recomputed from ray (same o and d, new tmax)");
+    m.def("check_frame", &check_frame, py::arg("frame"), py::arg("fmt"));
+    m.def("local_frame_for", &local_frame_for, py::arg("box"), py::arg("fmt"), py::arg("uniform") = false,
+          "The tightest frame of the format holding the box");
+    m.def("local_child_frame", [](const Box& child, const LocalFrame& parent, const LocalBox& qchild,
+                                  const LocalFormat& f, bool uniform) {
+        f.validate();
+        check_frame(parent, f);
+        check_local_box(qchild, f, "qchild");
+        return local_child_frame(child, parent, qchild, f, uniform);
+    }, py::arg("child"), py::arg("parent"), py::arg("qchild"), py::arg("fmt"), py::arg("uniform") = false,
+          "The frame of a child node from its parent's frame and its box there (qchild)");
+    m.def("local_quantize_box", &local_quantize_box, py::arg("box"), py::arg("frame"), py::arg("fmt"),
+          "The box in the frame, rounded outward (conservative) or to nearest");
+    m.def("local_node_ray", [](const LocalRay& r, const LocalFrame& fr, const LocalFormat& f) {
+        check_local_ray(r, f);
+        check_frame(fr, f);
+        return local_node_ray(r, fr, f);
+    }, py::arg("ray"), py::arg("frame"), py::arg("fmt"), "The node ray of a set-up ray in a frame (per node)");
+    m.def("local_hit", [](const LocalNodeRay& r, const LocalBox& b, const LocalFormat& f) {
+        check_local_node_ray(r, f);
+        check_local_box(b, f);
+        return local_hit(r, b, f);
+    }, py::arg("node_ray"), py::arg("box"), py::arg("fmt"), "The bit-exact child datapath");
+    m.def("local_hit", [](const Ray& r, const Box& b, const LocalFormat& f) {
+        validate_query(Query{r, b}, "local_hit");
+        return local_hit(r, b, f);
+    }, py::arg("ray"), py::arg("box"), py::arg("fmt"), "Set up and test one float query in its box's tightest frame");
+    m.def("local_frame_out_ports", [](const LocalNodeRay& r, const LocalFormat& f) {
+        return node_ray_ports(r, f, "_o");
+    }, py::arg("node_ray"), py::arg("fmt"),
+          "The node ray as the output port values of rtl/pluecker_local_frame.sv: a dict cls_o, dir_o, w_o, "
+          "org_o, end_o (zero fields without an end), end_valid_o (x, and W_0, in the low field)");
+    m.def("local_child_in_ports", &child_ports, py::arg("node_ray"), py::arg("box"), py::arg("fmt"),
+          "A node ray and a box as the input port values of rtl/pluecker_local_child.sv");
+    m.def("local_render_queries", &local_render_queries, py::arg("scene"), py::arg("size"), py::arg("fmt"),
+          py::arg("limit") = 0, py::arg("frames") = "parent", py::arg("cells") = "axis",
+          "The box queries a local-frame render (dsa order, size x size pixels) issues, in order: a list of "
+          "(LocalRay, LocalFrame, LocalBox, node); at most `limit` (0: all)");
+
+    py::class_<LocalPortContract>(m, "LocalPortContract",
+                                  "The port contract of rtl/pluecker_local_intersector.sv for one configuration "
+                                  "(local_contract.hpp)")
+        .def(py::init(&make_local_contract), py::arg("box_bits") = LocalContractDefaults::kBoxBits,
+             py::arg("dir_bits") = LocalContractDefaults::kDirBits,
+             py::arg("grid_bits") = LocalContractDefaults::kGridBits,
+             py::arg("tag_bits") = LocalContractDefaults::kTagBits, py::arg("conservative") = true,
+             py::arg("mul_style") = "auto", py::arg("children") = LocalContractDefaults::kChildren)
+        .def_property_readonly("box_bits", [](const LocalPortContract& c) { return c.config().box_bits; })
+        .def_property_readonly("dir_bits", [](const LocalPortContract& c) { return c.config().dir_bits; })
+        .def_property_readonly("grid_bits", [](const LocalPortContract& c) { return c.config().grid_bits; })
+        .def_property_readonly("tag_bits", [](const LocalPortContract& c) { return c.config().tag_bits; })
+        .def_property_readonly("conservative", [](const LocalPortContract& c) { return c.config().conservative; })
+        .def_property_readonly("mul_style", [](const LocalPortContract& c) { return c.config().mul_style; })
+        .def_property_readonly("children", [](const LocalPortContract& c) { return c.config().children; })
+        .def_property_readonly("format", &LocalPortContract::format)
+        .def_property_readonly("exp_bits", &LocalPortContract::exp_bits)
+        .def_property_readonly("frame_fabric", &LocalPortContract::frame_fabric)
+        .def_property_readonly("child_fabric", &LocalPortContract::child_fabric)
+        .def_property_readonly("frame_mul_add", &LocalPortContract::frame_mul_add)
+        .def_property_readonly("child_mul_add", &LocalPortContract::child_mul_add)
+        .def_property_readonly("frame_latency", &LocalPortContract::frame_latency)
+        .def_property_readonly("child_latency", &LocalPortContract::child_latency)
+        .def_property_readonly("latency", &LocalPortContract::latency)
+        .def_property_readonly("fifo_depth", &LocalPortContract::fifo_depth)
+        .def_property_readonly("frame_dsp_blocks", &LocalPortContract::frame_dsp_blocks)
+        .def_property_readonly("child_dsp_blocks", &LocalPortContract::child_dsp_blocks)
+        .def_property_readonly("dsp_blocks", &LocalPortContract::dsp_blocks, "MULT18X18D of one unit")
+        .def_property_readonly("ports", &LocalPortContract::ports)
+        .def("port", &LocalPortContract::port, py::arg("name"), py::return_value_policy::copy)
+        .def("rtl_ports", [](const LocalPortContract& c, const LocalRay& r, const LocalFrame& fr,
+                             const std::vector<LocalBox>& boxes) { return local_rtl_ports(r, fr, boxes, c); },
+             py::arg("ray"), py::arg("frame"), py::arg("boxes"),
+             "Port values of one query (CHILDREN boxes): a dict from input port name to an unsigned int")
+        .def_readonly_static("MAX_GRID_BITS", &LocalContractLimits::kMaxGridBits)
+        .def_readonly_static("MAX_CHILDREN", &LocalContractLimits::kMaxChildren)
+        .def("__repr__", [](const LocalPortContract& c) {
+            const LocalRtlConfig& k = c.config();
+            return "LocalPortContract(box_bits=" + std::to_string(k.box_bits) + ", dir_bits=" +
+                   std::to_string(k.dir_bits) + ", grid_bits=" + std::to_string(k.grid_bits) + ", tag_bits=" +
+                   std::to_string(k.tag_bits) + ", conservative=" + (k.conservative ? "True" : "False") +
+                   ", mul_style='" + mul_style_name(k.mul_style) + "', children=" + std::to_string(k.children) +
+                   "): LATENCY " + std::to_string(c.latency()) + ", FIFO_DEPTH " + std::to_string(c.fifo_depth());
+        });
+    m.def("local_contract_classes", [] {
+        py::list out;
+        for (const LocalContractClass& k : local_contract_classes()) out.append(local_class_dict(k));
+        return out;
+    }, "The configuration classes of the local unit's port contract (rtl/pluecker_local_contract.json)");
 }

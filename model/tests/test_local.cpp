@@ -123,6 +123,89 @@ TEST(Local, TightestFrameHoldsTheBoxAndNoSmallerCellDoes) {
     }
 }
 
+// The local segment end, END = (end - mirror) / 2^e in cells: a ceiling in
+// conservative mode (what the proof's end test assumes, and the RTL's
+// choice) and to nearest otherwise. Pinned so that a change of either
+// rounding fails here, not only where the margin happens to hide it.
+TEST(Local, SegmentEndRoundsOutwardInConservativeMode) {
+    for (const FixedMode m : {FixedMode::Conservative, FixedMode::Nearest}) {
+        const LocalFormat f = lformat(8, 11, 24, m);
+        Rng rng(4242);
+        int inexact = 0;
+        for (int n = 0; n < 20000; ++n) {
+            LocalRay r;
+            r.cls = static_cast<RayClass>(rng.below(8));
+            r.has_end = true;
+            r.dir_g = {std::int64_t{1} << 23, rng.below(1u << 23), rng.below(1u << 23)};
+            LocalFrame fr;
+            const int e = 1 + static_cast<int>(rng.below(8));
+            for (int i = 0; i < 3; ++i) {
+                fr.exp[i] = e;
+                fr.origin[i] = static_cast<std::int64_t>(rng.below(1u << 22)) - (std::int64_t{1} << 21);
+                r.org[i] = static_cast<std::int64_t>(rng.below(1u << 22)) - (std::int64_t{1} << 21);
+                r.end[i] = fr.origin[i] + rng.below(1u << (f.box_bits + e));
+            }
+            const LocalNodeRay nr = local_node_ray(r, fr, f);
+            for (int i = 0; i < 3; ++i) {
+                const bool neg = class_negative(r.cls, i);
+                const std::int64_t mirror = neg ? fr.origin[i] + (f.box_max() << e) : fr.origin[i];
+                const std::int64_t de = neg ? mirror - r.end[i] : r.end[i] - mirror;  // grid units
+                const std::int64_t got = nr.end[i];
+                if (got <= -1 || got >= (std::int64_t{1} << f.box_bits)) continue;  // clamped
+                const std::int64_t cell = std::int64_t{1} << e;
+                if (de % cell != 0) ++inexact;
+                if (m == FixedMode::Conservative) {
+                    ASSERT_GE(got * cell, de) << "END rounded inward: cell " << cell << ", end offset " << de;
+                    ASSERT_LT((got - 1) * cell, de) << "END more than a cell outward: offset " << de;
+                } else {
+                    ASSERT_LE(2 * std::abs(got * cell - de), cell) << "END not nearest: offset " << de;
+                }
+            }
+        }
+        EXPECT_GT(inexact, 10000) << "too few ends between cell boundaries to tell the roundings apart";
+    }
+}
+
+// The node ray's moment term in nearest mode: W_k = 2 RNE(lambda / 2^sh),
+// lambda = Delta_i DG_j - Delta_j DG_i about the (mirrored) frame origin.
+// With DG_x = 2^(G-1) and one exponent e on every axis, c = e and
+// sh = G + e - D. Pinned: a truncation or floor of the moment (which the
+// conservative margin may hide) fails here.
+TEST(Local, MomentRoundsToNearest) {
+    const LocalFormat f = lformat(8, 11, 24, FixedMode::Nearest);
+    Rng rng(777);
+    int inexact = 0;
+    for (int n = 0; n < 20000; ++n) {
+        LocalRay r;
+        r.cls = static_cast<RayClass>(rng.below(8));
+        r.dir_g = {std::int64_t{1} << 23, rng.below(1u << 23), rng.below(1u << 23)};
+        LocalFrame fr;
+        const int e = 1 + static_cast<int>(rng.below(8));
+        std::array<std::int64_t, 3> delta{};
+        for (int i = 0; i < 3; ++i) {
+            fr.exp[i] = e;
+            fr.origin[i] = static_cast<std::int64_t>(rng.below(1u << 20)) - (std::int64_t{1} << 19);
+            r.org[i] = fr.origin[i] + static_cast<std::int64_t>(rng.below(1u << 12)) - (std::int64_t{1} << 11);
+            const bool neg = class_negative(r.cls, i);
+            const std::int64_t mirror = neg ? fr.origin[i] + (f.box_max() << e) : fr.origin[i];
+            delta[i] = neg ? mirror - r.org[i] : r.org[i] - mirror;
+        }
+        const LocalNodeRay nr = local_node_ray(r, fr, f);
+        const int sh = f.grid_bits + e - f.dir_bits;
+        for (int k = 0; k < 6; ++k) {
+            const int i = local_pair_i(k), j = local_pair_j(k);
+            const std::int64_t lambda = delta[i] * r.dir_g[j] - delta[j] * r.dir_g[i];
+            if (nr.w[k] <= f.w_min() || nr.w[k] >= f.w_max()) continue;  // clamped
+            ASSERT_EQ(nr.w[k] % 2, 0) << "nearest mode: W is even (2L)";
+            const std::int64_t err = (nr.w[k] / 2) * (std::int64_t{1} << sh) - lambda;
+            if (lambda % (std::int64_t{1} << sh) != 0) ++inexact;
+            ASSERT_LE(2 * std::abs(err), std::int64_t{1} << sh)
+                << "W_" << k << " = " << nr.w[k] << " is not 2 RNE(lambda / 2^" << sh << "), lambda " << lambda;
+        }
+    }
+    EXPECT_GT(inexact, 50000) << "too few moments between steps to tell the roundings apart";
+}
+
 TEST(Local, BoxOutsideItsFrameOrTheRangeIsRefused) {
     const LocalFormat f = lformat(8, 11, 32);
     Box b;

@@ -161,6 +161,31 @@ TEST(Plan, RejectsBadBounds) {
     EXPECT_THROW(plan_widths(small().mesh, small().bvh, small().opts, parse_widths("12"), -0.5), InputError);
 }
 
+TEST(Plan, LocalPicksTheFirstBoxWidthWithinTheBound) {
+    std::vector<LocalSpec> specs;
+    for (const int k : {4, 6, 8, 10, 12}) {
+        LocalSpec sp;
+        sp.format.box_bits = k;
+        sp.format.dir_bits = k + 3;
+        specs.push_back(sp);
+    }
+    for (const double p : {1.0, 10.0}) {
+        SCOPED_TRACE(p);
+        const LocalPlanResult r = plan_local(small().mesh, small().bvh, small().opts, specs, p);
+        ASSERT_TRUE(r.chosen.has_value());
+        ASSERT_EQ(*r.chosen + 1, r.steps.size());
+        const LocalPlanStep& c = r.steps[*r.chosen];
+        EXPECT_LE(c.extra_box_tests_percent, p);
+        EXPECT_DOUBLE_EQ(c.extra_box_tests_percent, extra_percent(c.work.stats.traversal.box_tests,
+                                                                  r.reference.stats.traversal.box_tests));
+        for (std::size_t k = 0; k + 1 < r.steps.size(); ++k) EXPECT_GT(r.steps[k].extra_box_tests_percent, p);
+        EXPECT_EQ(c.work.checked.false_misses, 0u);
+    }
+    EXPECT_THROW(plan_local(small().mesh, small().bvh, small().opts, {}, 1.0), InputError);
+    specs[1].format.grid_bits = 24;
+    EXPECT_THROW(plan_local(small().mesh, small().bvh, small().opts, specs, 1.0), InputError);
+}
+
 #ifdef PLUECKER_CLI
 int run_cli(const std::string& args, std::string* out = nullptr) {
     const auto dir = std::filesystem::temp_directory_path();
@@ -200,6 +225,47 @@ TEST(PlanCli, WritesThePlanFileAndRejectsBadInput) {
     EXPECT_EQ(run_cli("study --scene sphere:2000 --size 24 --widths 4:8", &out), 2);
     EXPECT_NE(out.find("--widths"), std::string::npos) << out;
     EXPECT_EQ(run_cli("study --scene sphere:2000 --size 24 --order dist", &out), 2);
+    EXPECT_EQ(run_cli("plan --scene sphere:2000 --size 24 --max-extra-work 5 --children 2", &out), 2);
+    EXPECT_NE(out.find("--children needs --local"), std::string::npos) << out;
+    EXPECT_EQ(run_cli("plan --scene sphere:2000 --size 24 --max-extra-work 5 --local 12 --children 3", &out), 2);
+    EXPECT_NE(out.find("--children"), std::string::npos) << out;
+    std::filesystem::remove_all(dir);
+}
+
+// Global or local: the larger effective box tests per second per chip, from
+// the synthesis summaries in --synth-dir (written here with chosen rates).
+TEST(PlanCli, ChoosesBetweenGlobalAndLocalByEffectiveTestsPerChip) {
+    const auto dir = std::filesystem::temp_directory_path() / ("pluecker_plan_choice_" + std::to_string(::getpid()));
+    const auto summary = [&](const std::string& name, double rate) {
+        std::filesystem::create_directories(dir / name);
+        std::ofstream(dir / name / "summary.json") << "{\"box_tests_per_s_per_chip\": {\"6\": 1, \"8\": " << rate
+                                                   << "}}\n";
+    };
+    const std::string mk = (dir / "plan.mk").string();
+    const std::string cmd = "plan --scene sphere:2000 --size 24 --max-extra-work 1000 --widths 16x16 --local 12 "
+                            "--quiet --synth-dir " + dir.string() + " --out " + mk;
+    const auto plan_file = [&] {
+        std::ifstream f(mk);
+        std::stringstream ss;
+        ss << f.rdbuf();
+        return ss.str();
+    };
+    std::string out;
+    std::filesystem::create_directories(dir);
+    ASSERT_EQ(run_cli(cmd, &out), 0) << out;  // nothing synthesised: the global unit, said why
+    EXPECT_NE(out.find("until then the plan keeps the global unit"), std::string::npos) << out;
+    EXPECT_NE(plan_file().find("COORD_BITS := 16"), std::string::npos) << plan_file();
+    summary("16x16", 1e9);
+    summary("local_k12_d15_g32_c2", 4e9);
+    ASSERT_EQ(run_cli(cmd, &out), 0) << out;
+    EXPECT_NE(out.find("chosen: local frames K=12 D=15 G=32"), std::string::npos) << out;
+    const std::string local_plan = plan_file();
+    for (const char* v : {"UNIT := local", "BOX_BITS := 12", "LOCAL_DIR_BITS := 15", "GRID_BITS := 32", "CHILDREN := 2"})
+        EXPECT_NE(local_plan.find(v), std::string::npos) << v << "\n" << local_plan;
+    summary("16x16", 8e9);
+    ASSERT_EQ(run_cli(cmd, &out), 0) << out;
+    EXPECT_NE(out.find("chosen: COORD_BITS=16 DIR_BITS=16"), std::string::npos) << out;
+    EXPECT_EQ(plan_file().find("UNIT := local"), std::string::npos) << plan_file();
     std::filesystem::remove_all(dir);
 }
 

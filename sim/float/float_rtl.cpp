@@ -16,14 +16,6 @@ void Vfloat_unit___024root___eval(Vfloat_unit___024root* vlSelf) __attribute__((
 namespace pluecker::sim {
 namespace {
 
-FloatRtl::Stream::DirectEval direct_eval_fn() {
-#if SIM_DIRECT_EVAL
-    return &::Vfloat_unit___024root___eval;
-#else
-    return nullptr;
-#endif
-}
-
 FloatRtlConfig built_config() {
     FloatRtlConfig c;
     c.unit = SIM_FLOAT_UNIT == 0 ? FloatUnit::Pluecker : FloatUnit::Smits;
@@ -34,8 +26,8 @@ FloatRtlConfig built_config() {
 }
 
 template <class Port>
-void check_port(const char* name) {
-    check_port_width<Port>(name, built_contract().port(name).width());
+void check_contract_port(const char* name) {
+    check_port<Port>(name, built_contract().port(name).width());
 }
 
 // The contract's packing of one query, by port name.
@@ -78,59 +70,54 @@ PackedQuery pack(const UnitQuery& q) {
     const std::vector<FloatPortValue> v = pack_float_query(q);
     PackedQuery p;
     p.cls = static_cast<std::uint8_t>(value_of(v, "ray_class_i")[0]);
-    drive_port(p.org, value_of(v, "ray_org_i"));
-    drive_port(p.lo, value_of(v, "box_min_i"));
-    drive_port(p.hi, value_of(v, "box_max_i"));
+    drive(p.org, value_of(v, "ray_org_i"));
+    drive(p.lo, value_of(v, "box_min_i"));
+    drive(p.hi, value_of(v, "box_max_i"));
 #if SIM_FLOAT_UNIT == 0
-    drive_port(p.dir, value_of(v, "ray_dir_i"));
-    drive_port(p.end, value_of(v, "ray_end_i"));
+    drive(p.dir, value_of(v, "ray_dir_i"));
+    drive(p.end, value_of(v, "ray_end_i"));
     p.end_valid = static_cast<std::uint8_t>(value_of(v, "ray_end_valid_i")[0]);
 #else
-    drive_port(p.inv, value_of(v, "ray_inv_i"));
+    drive(p.inv, value_of(v, "ray_inv_i"));
     p.tmax = value_of(v, "ray_tmax_i")[0];
 #endif
     return p;
 }
 
-FloatRtl::FloatRtl() : rtl_(std::make_unique<Stream>(built_contract().module(), direct_eval_fn())) {
-    Vfloat_unit& t = rtl_->top();
-    check_port<PortType<decltype(t.in_tag_i)>>("in_tag_i");
-    check_port<PortType<decltype(t.out_tag_o)>>("out_tag_o");
-    check_port<PortType<decltype(t.ray_org_i)>>("ray_org_i");
-    check_port<PortType<decltype(t.box_min_i)>>("box_min_i");
-    check_port<PortType<decltype(t.box_max_i)>>("box_max_i");
+void PackedQuery::apply(Vfloat_unit& t) const {
+    t.ray_class_i = cls;
+    t.ray_org_i = org;
+    t.box_min_i = lo;
+    t.box_max_i = hi;
 #if SIM_FLOAT_UNIT == 0
-    check_port<PortType<decltype(t.ray_dir_i)>>("ray_dir_i");
-    check_port<PortType<decltype(t.ray_end_i)>>("ray_end_i");
+    t.ray_dir_i = dir;
+    t.ray_end_i = end;
+    t.ray_end_valid_i = end_valid;
 #else
-    check_port<PortType<decltype(t.ray_inv_i)>>("ray_inv_i");
-    check_port<PortType<decltype(t.ray_tmax_i)>>("ray_tmax_i");
+    t.ray_inv_i = inv;
+    t.ray_tmax_i = tmax;
 #endif
-    rtl_->reset();
-    latency_ = rtl_->measure_latency();  // one query of zero patterns (the ports' initial values)
-    if (latency_ != built_contract().latency())
-        throw ProtocolError("the " + std::string(built_contract().module()) + " answers after " +
-                            std::to_string(latency_) + " cycles, the port contract's LATENCY is " +
-                            std::to_string(built_contract().latency()));
-    rtl_->reset();
 }
 
-void FloatRtl::run(const PackedQuery* q, std::size_t n, std::uint8_t* hits) {
-    rtl_->run(n, [q](Vfloat_unit& t, std::size_t i) {
-        const PackedQuery& p = q[i];
-        t.ray_class_i = p.cls;
-        t.ray_org_i = p.org;
-        t.box_min_i = p.lo;
-        t.box_max_i = p.hi;
+FloatRtl::FloatRtl() : RtlStream(SIM_TAG_BITS, built_contract().module()) {
+    Vfloat_unit& t = top();
+    check_contract_port<PortType<decltype(t.in_tag_i)>>("in_tag_i");
+    check_contract_port<PortType<decltype(t.out_tag_o)>>("out_tag_o");
+    check_contract_port<PortType<decltype(t.ray_org_i)>>("ray_org_i");
+    check_contract_port<PortType<decltype(t.box_min_i)>>("box_min_i");
+    check_contract_port<PortType<decltype(t.box_max_i)>>("box_max_i");
 #if SIM_FLOAT_UNIT == 0
-        t.ray_dir_i = p.dir;
-        t.ray_end_i = p.end;
-        t.ray_end_valid_i = p.end_valid;
+    check_contract_port<PortType<decltype(t.ray_dir_i)>>("ray_dir_i");
+    check_contract_port<PortType<decltype(t.ray_end_i)>>("ray_end_i");
 #else
-        t.ray_inv_i = p.inv;
-        t.ray_tmax_i = p.tmax;
+    check_contract_port<PortType<decltype(t.ray_inv_i)>>("ray_inv_i");
+    check_contract_port<PortType<decltype(t.ray_tmax_i)>>("ray_tmax_i");
 #endif
-    }, hits);
+    EvalFn direct = nullptr;
+#if SIM_DIRECT_EVAL
+    direct = &::Vfloat_unit___024root___eval;
+#endif
+    start(built_contract().latency(), direct);  // one all-zero query
 }
 
 }  // namespace pluecker::sim

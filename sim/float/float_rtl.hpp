@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // A Verilated binary32 unit (rtl/pluecker_float_intersector.sv, "float", or
 // rtl/pluecker_smits_intersector.sv, "smits") behind the stream harness of
-// ../stream_rtl.hpp: queries in with valid/ready, answers back by tag.
+// ../rtl_stream.hpp: queries in with valid/ready, answers back by tag.
 //
 // The unit and its parameters are fixed when the harness is built
 // (sim/build.sh: SIM_UNIT, MODE, SIM_MUL_DSP, SIM_TAG_BITS as Verilator -G
@@ -12,14 +12,13 @@
 #pragma once
 
 #include "Vfloat_unit.h"
-#include "stream_rtl.hpp"
+#include "rtl_stream.hpp"
 
 #include "pluecker/f32unit.hpp"
 #include "pluecker/float_contract.hpp"
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <type_traits>
 
@@ -62,24 +61,17 @@ struct PackedQuery {
     std::uint32_t tmax = 0;
 #endif
     std::uint8_t cls = 0;
+    void apply(Vfloat_unit& t) const;
 };
 
 PackedQuery pack(const UnitQuery& q);
 
-class FloatRtl {
+// The unit: RtlStream (rtl_stream.hpp) on the Verilated model. The
+// constructor checks the Verilated ports' widths against the port contract
+// and measures the latency of one query against its LATENCY.
+class FloatRtl : public RtlStream<Vfloat_unit, PackedQuery> {
 public:
-    using Stream = StreamRtl<Vfloat_unit, SIM_TAG_BITS>;
-
     FloatRtl();
-    void set_backpressure(double p_ready, std::uint64_t seed) { rtl_->set_backpressure(p_ready, seed); }
-    // Streams q[0..n) back to back; the answer of q[i] in hits[i].
-    void run(const PackedQuery* q, std::size_t n, std::uint8_t* hits);
-    const StreamStats& stats() const { return rtl_->stats(); }
-    int measured_latency() const { return latency_; }
-
-private:
-    std::unique_ptr<Stream> rtl_;
-    int latency_ = 0;
 };
 
 }  // namespace pluecker::sim

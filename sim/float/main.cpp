@@ -11,6 +11,7 @@
 //   bench [--n N] [--ready P]   queries per second
 // Exit status: 0 ok, 1 mismatch or RTL protocol error, 2 bad input.
 #include "float_rtl.hpp"
+#include "harness_main.hpp"
 
 #include "pluecker/app/args.hpp"
 #include "pluecker/app/query_file.hpp"
@@ -253,28 +254,7 @@ int cmd_bench(const std::vector<std::string>& argv) {
 
 int main(int argc, char** argv) {
     using namespace pluecker::sim;
-    Verilated::commandArgs(1, argv);  // no plusargs reach the model
-    if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
-        std::fputs(kUsage, argc < 2 ? stderr : stdout);
-        if (argc >= 2) std::printf("built for: %s, TAG_BITS %d\n", build_name().c_str(), SIM_TAG_BITS);
-        return argc < 2 ? 2 : 0;
-    }
-    const std::string cmd = argv[1];
-    const std::vector<std::string> rest(argv + 2, argv + argc);
-    try {
-        if (cmd == "query") return cmd_query(rest);
-        if (cmd == "check") return cmd_check(rest);
-        if (cmd == "bench") return cmd_bench(rest);
-        std::fprintf(stderr, "pluecker_sim: unknown command '%s'\n%s", cmd.c_str(), kUsage);
-        return 2;
-    } catch (const pluecker::InputError& e) {
-        std::fprintf(stderr, "pluecker_sim %s: error: %s\n", cmd.c_str(), e.what());
-        return 2;
-    } catch (const ProtocolError& e) {
-        std::fprintf(stderr, "pluecker_sim %s: RTL protocol error: %s\n", cmd.c_str(), e.what());
-        return 1;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "pluecker_sim %s: internal error: %s\n", cmd.c_str(), e.what());
-        return 1;
-    }
+    return harness_main(argc, argv, "pluecker_sim", kUsage,
+                        build_name() + ", TAG_BITS " + std::to_string(SIM_TAG_BITS),
+                        {{"query", cmd_query}, {"check", cmd_check}, {"bench", cmd_bench}});
 }

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from pathlib import Path
 
 import pytest
@@ -51,6 +52,7 @@ _seed = config.seed
 try:
     import cocotb
 
+    from pluecker_tb import bench as unit_tests
     from pluecker_tb.intersector import IntersectorBench as Bench
     from pluecker_tb.intersector import stimulus as _stimulus
 except ImportError:  # pragma: no cover - only the pytest runner part is usable
@@ -89,7 +91,9 @@ if cocotb is not None:
         """Resets in the middle of a stream drop everything in flight."""
         bench = Bench(dut, _seed("reset"), idle=True, backpressure=True)
         await bench.start()
-        await bench.reset_mid_stream(_stimulus(bench, "random", _n(3000), "reset"))
+        vectors = _stimulus(bench, "random", _n(3000), "reset")
+        resets = await unit_tests.reset_mid_stream(bench, vectors)
+        bench.finish(f"reset ({resets} resets)")
 
     @cocotb.test()
     async def throughput(dut) -> None:
@@ -103,22 +107,33 @@ if cocotb is not None:
         # which must agree with it.
         contract = pp.PortContract(bench.coord_bits, bench.dir_bits, bench.tag_bits, bench.conservative,
                                    os.environ.get("PLUECKER_TB_MUL_STYLE", "auto"), int(dut.PIPELINE.value))
-        latency, depth = bench.check_contract(contract)
+        latency, depth = contract.latency, contract.fifo_depth
+        dut_values = (int(dut.LATENCY.value), int(dut.FIFO_DEPTH.value))
+        assert dut_values == (latency, depth), (
+            f"DUT LATENCY, FIFO_DEPTH = {dut_values}, port contract {(latency, depth)} ({contract!r})")
+        for port in contract.ports:
+            assert len(getattr(dut, port.name)) == port.width, (
+                f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
 
         # Phase 1: never stalled, so one query is taken every clock.
         # PLUECKER_BENCH_N sets its length and PLUECKER_BENCH_JSON a file for
         # the wall-clock rate (scripts/cocotb_bench.py, `make bench`).
         n_bench = int(os.environ.get("PLUECKER_BENCH_N", "0")) or 300 * SCALE
         vectors = _stimulus(bench, "random", n_bench, "throughput")
-        seconds = await bench.full_rate(vectors, latency)
+        start = time.perf_counter()
+        await unit_tests.full_rate(bench, vectors, latency)
+        seconds = time.perf_counter() - start
         n = len(vectors)
+        dut._log.info("cocotb throughput: %d queries in %.3f s wall = %.0f queries/s "
+                      "(driver, sink and scoreboard included)", n, seconds, n / seconds)
         if os.environ.get("PLUECKER_BENCH_JSON"):
             Path(os.environ["PLUECKER_BENCH_JSON"]).write_text(json.dumps(
                 {"queries": n, "seconds": seconds, "queries_per_second": n / seconds,
                  "coord_bits": bench.coord_bits, "dir_bits": bench.dir_bits}) + "\n")
 
         # Phase 2: output blocked; exactly FIFO_DEPTH queries get in.
-        await bench.credits_stop_input(_stimulus(bench, "extreme", depth + 16, "credits"), latency, depth)
+        more = _stimulus(bench, "extreme", depth + 16, "credits")
+        await unit_tests.credits_stop_input(bench, more, latency, depth)
         bench.finish(f"throughput (LATENCY {latency}, FIFO_DEPTH {depth})")
 
 

@@ -123,8 +123,11 @@ class StressBench(IntersectorBench):
             return
         from cocotb.types import LogicArray
 
-        for name, width in {"in_tag_i": self.tag_bits, **self.payload}.items():
-            getattr(self.dut, name).value = LogicArray("X" * width)
+        dut, c3, d3 = self.dut, 3 * self.coord_bits, 3 * self.dir_bits
+        for name, width in (("in_tag_i", self.tag_bits), ("ray_class_i", 3), ("ray_org_i", c3),
+                            ("ray_dir_i", d3), ("ray_end_i", c3), ("ray_end_valid_i", 1),
+                            ("box_min_i", c3), ("box_max_i", c3)):
+            getattr(dut, name).value = LogicArray("X" * width)
 
     async def start(self) -> None:
         # The monitor first, so that its X checks come before the sink's

@@ -13,12 +13,14 @@ cocotb tests of the same file in the simulator. What they share lives here:
                (output stalls)
   stream       valid/ready driver, sink and the in-order scoreboard, wired
                by callbacks (no assumed latency)
-  stream_bench StreamBench: the three above around a unit with the
-               intersectors' handshake (the payload ports named by a subclass)
-  intersector  IntersectorBench: StreamBench around
+  bench        UnitBench: the three above around a valid/ready unit with a
+               tag (the payload ports named by a subclass), and the tests
+               every unit bench runs (reset_mid_stream, full_rate,
+               credits_stop_input, check_contract)
+  intersector  IntersectorBench: UnitBench around
                rtl/pluecker_intersector.sv, and its stimulus
   vectors      the intersector's stimulus from the golden model (pluecker_py)
-  float_units  FloatUnitBench: StreamBench around the binary32 units
+  float_units  FloatUnitBench: UnitBench around the binary32 units
                (pluecker_float_intersector, pluecker_smits_intersector), their
                stimulus and the cocotb tests both units' benches import
   float_build  the pytest side of the binary32 units' benches
@@ -33,7 +35,7 @@ cocotb tests of the same file in the simulator. What they share lives here:
   hdl/         MULT18X18D.v (the model), mul_stream.sv (the multipliers'
                bench top), Verilator waivers for builds that use them
 
-Modules that touch cocotb (clock_reset, stream, stream_bench, intersector,
+Modules that touch cocotb (clock_reset, stream, bench, intersector,
 float_units, f32_ops, multiplier)
 need it importable (it is, in the venv) but run only in the simulator;
 config, runner and ecp5 are the pytest side's.

@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """The binary32 units' bench (cocotb side): FloatUnitBench, the stream bench
-(pluecker_tb.stream_bench) around rtl/pluecker_float_intersector.sv (unit
+(pluecker_tb.bench) around rtl/pluecker_float_intersector.sv (unit
 "float") or rtl/pluecker_smits_intersector.sv (unit "smits"), their
 stimulus, and the cocotb tests both units' bench files import.
 
@@ -40,7 +40,8 @@ from typing import Callable
 import cocotb
 
 from . import config
-from .stream_bench import StreamBench
+from . import bench as unit_tests
+from .bench import UnitBench
 
 FLOAT_TOP = "pluecker_float_intersector"
 SMITS_TOP = "pluecker_smits_intersector"
@@ -56,7 +57,7 @@ class Vector:
     describe: Callable[[], str]  # called only for error messages
 
 
-class FloatUnitBench(StreamBench):
+class FloatUnitBench(UnitBench):
     """The bench of one binary32 unit; the unit, TAG_BITS, CONSERVATIVE and
     MUL_DSP are read back from the DUT."""
 
@@ -65,14 +66,13 @@ class FloatUnitBench(StreamBench):
         self.conservative = self.unit == "float" and bool(int(dut.CONSERVATIVE.value))
         self.mul_dsp = int(dut.MUL_DSP.value)
         if self.unit == "float":
-            payload = {"ray_class_i": 3, "ray_org_i": 96, "ray_dir_i": 96, "ray_end_i": 96, "ray_end_valid_i": 1,
-                       "box_min_i": 96, "box_max_i": 96}
+            self.PAYLOAD = ("ray_class_i", "ray_org_i", "ray_dir_i", "ray_end_i", "ray_end_valid_i", "box_min_i",
+                            "box_max_i")
         else:
-            payload = {"ray_class_i": 3, "ray_org_i": 96, "ray_inv_i": 96, "ray_tmax_i": 32, "box_min_i": 96,
-                       "box_max_i": 96}
-        super().__init__(dut, seed, payload, idle, backpressure, traffic_gen)
+            self.PAYLOAD = ("ray_class_i", "ray_org_i", "ray_inv_i", "ray_tmax_i", "box_min_i", "box_max_i")
+        super().__init__(dut, seed, idle, backpressure, traffic_gen)
         dut._log.info("DUT %s TAG_BITS=%d CONSERVATIVE=%d MUL_DSP=%d LATENCY=%s, seed %d, idle=%s backpressure=%s",
-                      self.unit, self.tag_bits, self.conservative, self.mul_dsp, self.latency_text(), seed, idle,
+                      self.unit, self.tag_bits, self.conservative, self.mul_dsp, unit_tests.latency_text(dut), seed, idle,
                       backpressure)
 
     def contract(self):
@@ -219,7 +219,8 @@ async def reset_mid_stream(dut) -> None:
     """Resets in the middle of a stream drop everything in flight."""
     bench = FloatUnitBench(dut, config.seed("reset"), idle=True, backpressure=True)
     await bench.start()
-    await bench.reset_mid_stream(stimulus(bench, "random", _n(1500), "reset"))
+    resets = await unit_tests.reset_mid_stream(bench, stimulus(bench, "random", _n(1500), "reset"))
+    bench.finish(f"reset ({resets} resets)")
 
 
 @cocotb.test()
@@ -227,8 +228,8 @@ async def throughput(dut) -> None:
     """One query per clock, the contract's latency, credits stop the input."""
     bench = FloatUnitBench(dut, config.seed("throughput"))
     await bench.start()
-    latency, depth = bench.check_contract(bench.contract())
+    latency, depth = unit_tests.check_contract(bench, bench.contract())
     # Phase 1: never stalled; phase 2: output blocked, FIFO_DEPTH queries get in.
-    await bench.full_rate(stimulus(bench, "random", 300 * config.SCALE, "throughput"), latency)
-    await bench.credits_stop_input(stimulus(bench, "extreme", depth + 16, "credits"), latency, depth)
+    await unit_tests.full_rate(bench, stimulus(bench, "random", 300 * config.SCALE, "throughput"), latency)
+    await unit_tests.credits_stop_input(bench, stimulus(bench, "extreme", depth + 16, "credits"), latency, depth)
     bench.finish(f"throughput (LATENCY {latency}, FIFO_DEPTH {depth})")

@@ -3,6 +3,7 @@
 // derived constants, the port encoding of a query and the generated files.
 #include "pluecker/contract.hpp"
 
+#include "contract_util.hpp"
 #include "grid.hpp"
 
 #include "pluecker/fixed.hpp"
@@ -35,34 +36,15 @@ void check_width(int bits, const char* name) {
                          std::to_string(L::kMinBits) + ".." + std::to_string(L::kMaxBits));
 }
 
-// Fields of a port value (ports are at most 72 bits: three 32-bit words).
-void put_field(PortWords& w, int lsb, int bits, std::uint64_t v) {
-    v &= (std::uint64_t{1} << bits) - 1;
-    const int word = lsb / 32, shift = lsb % 32;
-    w[static_cast<std::size_t>(word)] |= static_cast<std::uint32_t>(v << shift);
-    if (shift + bits > 32) w[static_cast<std::size_t>(word) + 1] |= static_cast<std::uint32_t>(v >> (32 - shift));
-}
-
-std::uint64_t get_field(const PortWords& w, int lsb, int bits) {
-    const int word = lsb / 32, shift = lsb % 32;
-    std::uint64_t v = w[static_cast<std::size_t>(word)] >> shift;
-    if (shift + bits > 32) v |= static_cast<std::uint64_t>(w[static_cast<std::size_t>(word) + 1]) << (32 - shift);
-    return v & ((std::uint64_t{1} << bits) - 1);
-}
-
 PortWords pack3(const std::array<i64, 3>& v, int bits) {
     PortWords w{};
-    for (int a = 0; a < 3; ++a) put_field(w, a * bits, bits, static_cast<std::uint64_t>(v[static_cast<std::size_t>(a)]));
+    for (int a = 0; a < 3; ++a) detail::put_field(w, a * bits, bits, static_cast<std::uint64_t>(v[static_cast<std::size_t>(a)]));
     return w;
 }
 
 std::array<i64, 3> unpack3(const PortWords& w, int bits, bool is_signed) {
     std::array<i64, 3> v{};
-    for (int a = 0; a < 3; ++a) {
-        i64 x = static_cast<i64>(get_field(w, a * bits, bits));
-        if (is_signed && (x >> (bits - 1)) != 0) x -= i64{1} << bits;
-        v[static_cast<std::size_t>(a)] = x;
-    }
+    for (int a = 0; a < 3; ++a) v[static_cast<std::size_t>(a)] = detail::field_value(w, a * bits, bits, is_signed);
     return v;
 }
 
@@ -101,26 +83,13 @@ Row row_of(int c, int d, MulStyle s, int p) {
 // Maximal runs lo..hi of widths over which every row (for every other
 // width, style and PIPELINE) is the same; `coord` picks the axis.
 std::vector<std::pair<int, int>> width_runs(bool coord) {
-    auto signature = [coord](int w) {
+    return detail::width_runs(L::kMinBits, L::kMaxBits, [coord](int w) {
         std::vector<Row> sig;
         for (int o = L::kMinBits; o <= L::kMaxBits; ++o)
             for (MulStyle s : kStyles)
                 for (int p = 0; p <= L::kMaxPipeline; ++p) sig.push_back(coord ? row_of(w, o, s, p) : row_of(o, w, s, p));
         return sig;
-    };
-    std::vector<std::pair<int, int>> runs;
-    auto prev = signature(L::kMinBits);
-    int lo = L::kMinBits;
-    for (int w = L::kMinBits + 1; w <= L::kMaxBits + 1; ++w) {
-        if (w <= L::kMaxBits) {
-            auto sig = signature(w);
-            if (sig == prev) continue;
-            prev = std::move(sig);
-        }
-        runs.emplace_back(lo, w - 1);
-        lo = w;
-    }
-    return runs;
+    });
 }
 
 const char* multiplier_name(bool fabric) { return fabric ? "lut" : "dsp"; }
@@ -296,13 +265,7 @@ std::string contract_sv_package() {
     }
     s << "  endfunction\n";
     auto table = [&](const char* name, const char* type, const char* what, auto value) {
-        s << "\n  // " << what << " of class k.\n"
-          << "  function automatic " << type << " " << name << "(input int k);\n"
-          << "    case (k)\n";
-        for (std::size_t k = 0; k < classes.size(); ++k) s << "      " << k << ": " << name << " = " << value(classes[k]) << ";\n";
-        s << "      default: " << name << " = 0;\n"
-          << "    endcase\n"
-          << "  endfunction\n";
+        detail::write_sv_table(s, classes, name, type, what, value);
     };
     table("contract_mul_lut", "bit", "1: fabric multipliers (pluecker_mul_lut), 0: pluecker_mul",
           [](const ContractClass& c) { return c.fabric ? 1 : 0; });

@@ -640,6 +640,24 @@ void check_max_extra_work(double p) {
                          std::to_string(p));
 }
 
+// Measures the candidates in order (conservative renders) until one's
+// extra box tests over `reference` are <= max_extra_percent; returns its
+// index into `steps`, which holds every step measured.
+template <class Step, class Candidate, class Measure>
+std::optional<std::size_t> first_within(const std::vector<Candidate>& candidates, double max_extra_percent,
+                                        const WorkFigures& reference, std::vector<Step>& steps,
+                                        const std::function<void(const Step&)>& on_step, Measure measure) {
+    for (const Candidate& c : candidates) {
+        Step s{c, measure(c), 0.0};  // PlanStep::widths or LocalPlanStep::spec first
+        s.extra_box_tests_percent =
+            extra_percent(s.work.stats.traversal.box_tests, reference.stats.traversal.box_tests);
+        steps.push_back(s);
+        if (on_step) on_step(s);
+        if (s.extra_box_tests_percent <= max_extra_percent) return steps.size() - 1;
+    }
+    return std::nullopt;
+}
+
 PlanResult plan_widths(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
                        const std::vector<WidthPair>& widths, double max_extra_percent,
                        const std::function<void(const PlanStep&)>& on_step) {
@@ -647,19 +665,26 @@ PlanResult plan_widths(const Mesh& mesh, const Bvh& bvh, const RenderOptions& op
     if (widths.empty()) throw InputError("--widths: no width given");
     PlanResult res;
     res.reference = run_reference(mesh, bvh, opts, {}, 1).figures;
-    for (const WidthPair& w : widths) {
-        PlanStep s;
-        s.widths = w;
-        s.work = run_fixed(mesh, bvh, opts, w, FixedMode::Conservative, nullptr).figures;
-        s.extra_box_tests_percent =
-            extra_percent(s.work.stats.traversal.box_tests, res.reference.stats.traversal.box_tests);
-        res.steps.push_back(s);
-        if (on_step) on_step(s);
-        if (s.extra_box_tests_percent <= max_extra_percent) {
-            res.chosen = res.steps.size() - 1;
-            break;
-        }
-    }
+    res.chosen = first_within(widths, max_extra_percent, res.reference, res.steps, on_step, [&](const WidthPair& w) {
+        return run_fixed(mesh, bvh, opts, w, FixedMode::Conservative, nullptr).figures;
+    });
+    return res;
+}
+
+LocalPlanResult plan_local(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
+                           const std::vector<LocalSpec>& specs, double max_extra_percent,
+                           const std::function<void(const LocalPlanStep&)>& on_step) {
+    check_max_extra_work(max_extra_percent);
+    if (specs.empty()) throw InputError("--local: no box width given");
+    LocalPlanResult res;
+    for (const LocalSpec& sp : specs)
+        if (sp.format.grid_bits != specs.front().format.grid_bits)
+            throw InputError("local frames: every configuration of a plan needs the same --grid-bits");
+    // The reference's answers are exact; the first spec drives its traversal.
+    res.reference = run_local_reference(mesh, bvh, opts, {specs.front()}).figures;
+    res.chosen = first_within(specs, max_extra_percent, res.reference, res.steps, on_step, [&](const LocalSpec& sp) {
+        return run_local(mesh, bvh, opts, sp, FixedMode::Conservative, nullptr).figures;
+    });
     return res;
 }
 

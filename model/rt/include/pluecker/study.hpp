@@ -230,4 +230,21 @@ PlanResult plan_widths(const Mesh& mesh, const Bvh& bvh, const RenderOptions& op
                        const std::vector<WidthPair>& widths, double max_extra_percent,
                        const std::function<void(const PlanStep&)>& on_step = {});
 
+// The same for local frames: the first spec (in the given order, normally
+// increasing K) whose conservative extra box tests over the local path's
+// exact reference are <= max_extra_percent. Specs share one grid width.
+struct LocalPlanStep {
+    LocalSpec spec;
+    WorkFigures work;
+    double extra_box_tests_percent = 0;
+};
+struct LocalPlanResult {
+    WorkFigures reference;
+    std::vector<LocalPlanStep> steps;
+    std::optional<std::size_t> chosen;
+};
+LocalPlanResult plan_local(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,
+                           const std::vector<LocalSpec>& specs, double max_extra_percent,
+                           const std::function<void(const LocalPlanStep&)>& on_step = {});
+
 }  // namespace pluecker
