@@ -123,7 +123,7 @@ SIM_BIN       = $(SIM_DIR)/pluecker_sim
 SIM_VARS      = COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
                 MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS)
 
-.PHONY: sim sim-query sim-render sim-bench sim-boundary
+.PHONY: sim sim-query sim-render sim-bench sim-boundary sim-float
 
 sim: build
 	@$(SIM_VARS) $(ENV) sim/build.sh
@@ -145,6 +145,18 @@ sim-boundary: sim
 	@q=$(SIM_DIR)/boundary.txt; $(SIM_BIN) gen --n $(SIM_BOUNDARY_N) --kind boundary --out $$q && \
 	$(SIM_BIN) query --check $$q > $(SIM_DIR)/boundary.answers
 
+# make sim-float   builds the harness of a binary32 unit (FLOAT_UNIT float|smits,
+#                  FLOAT_MODE nearest|conservative, MUL_DSP) in
+#                  build/sim/<unit>[_cons]_dsp<M>/ and checks FLOAT_N mixed
+#                  queries through it against the model and exact_hit.
+FLOAT_UNIT ?= float
+FLOAT_MODE ?= nearest
+FLOAT_N    ?= 200000
+
+sim-float: build
+	@bin=$$(SIM_UNIT=$(FLOAT_UNIT) MODE=$(FLOAT_MODE) SIM_MUL_DSP=$(MUL_DSP) MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) \
+	  SIM_TAG_BITS=$(SIM_TAG_BITS) $(ENV) sim/build.sh | tail -1) && echo "sim-float: $$bin" && \
+	$$bin check --n $(FLOAT_N) --kind mixed --exact
 # ---- The local unit's harness (sim/local/) -----------------------------------
 # make sim-local         builds build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>]/pluecker_sim_local
 # make sim-local-query   LOCAL_QUERIES (default: 20000 generated, mixed and boundary) through the
@@ -195,22 +207,26 @@ sim-local-bench: sim-local
 # ---- FPGA flow: ECP5 LFE5U-85F synthesis and place-and-route ---------------
 # (scripts/synth.py, fpga/). Results per width pair in
 # out/synth/<C>x<D>/summary.json. Extra flags: SYNTH_FLAGS=--no-pnr etc.
-SEEDS       ?= 3
-SPEEDS      ?= 6 8
-FREQ        ?= 250
-SYNTH_FLAGS ?=
+# UNIT=float|smits synthesises a binary32 unit instead (MUL_DSP=1|3|4,
+# default the port contract's; CONSERVATIVE=1 for the conservative Plücker
+# unit): out/synth/<unit>[_cons]_dsp<M>/summary.json. UNIT=local (as a plan
+# file choosing the local unit sets it) runs synth-local instead.
+SEEDS        ?= 3
+SPEEDS       ?= 6 8
+FREQ         ?= 250
+SYNTH_FLAGS  ?=
+UNIT         ?= fixed
+MUL_DSP      ?=
+CONSERVATIVE ?=
 
 .PHONY: synth synth-smoke
-
-# UNIT=local (as a plan file choosing the local unit sets it) runs
-# synth-local instead.
-UNIT        ?= fixed
 
 synth: setup
 ifeq ($(UNIT),local)
 	@$(MAKE) --no-print-directory synth-local
 else
-	$(ENV) python scripts/synth.py --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
+	$(ENV) python scripts/synth.py --unit $(UNIT) $(if $(filter fixed,$(UNIT)),--coord-bits $(COORD_BITS) \
+	  --dir-bits $(DIR_BITS)) $(if $(MUL_DSP),--mul-dsp $(MUL_DSP)) $(if $(CONSERVATIVE),--conservative $(CONSERVATIVE)) \
 	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 endif
 
@@ -371,8 +387,11 @@ peer: setup
 #                   against exact for the float queries), the long cocotb stress bench (its
 #                   sizes scale with REGRESS_N) and the long cocotb sweeps
 #                   (PLUECKER_LONG=1: the intersector at every width pair of
-#                   its sweep in both modes, the multipliers; not yet timed
-#                   at full size). Summary in
+#                   its sweep in both modes, the multipliers, the binary32
+#                   units and their primitives; not yet timed at full size),
+#                   and REGRESS_FLOAT_N queries through each binary32 unit's
+#                   harness (extreme and random also against exact, raw bit
+#                   patterns, operands around 2^-126). Summary in
 #                   build/regress/summary.txt. About 20 min on 2 quiet
 #                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
 #                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
@@ -404,6 +423,7 @@ peer: setup
 #                   harness's boundary check, the model's segment-end
 #                   rounding through its pinning test), in `make test`.
 REGRESS_N      ?= 1000000
+REGRESS_FLOAT_N ?= 10000000
 REGRESS_WIDTHS ?= 6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n
 REGRESS_LOCAL_N ?= 1000000
 REGRESS_LOCAL_CONFIGS ?= 8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1
@@ -414,6 +434,7 @@ MUTANTS        ?=
 
 sim-regress: build
 	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
+	  REGRESS_FLOAT_N=$(REGRESS_FLOAT_N) \
 	  REGRESS_LOCAL_N=$(REGRESS_LOCAL_N) REGRESS_LOCAL_CONFIGS="$(REGRESS_LOCAL_CONFIGS)" \
 	  $(ENV) scripts/regress.sh
 

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // A delay line of STAGES registers (no reset, no enable): q_o is d_i as it
-// was STAGES rising edges ago; STAGES = 0 is a wire. The local unit's
-// pipelines use it to carry a value beside the stages that compute others
-// (datapath only: valid bits, which are reset, are kept by the unit itself).
+// was STAGES rising edges ago; STAGES = 0 is a wire. The local and the
+// binary32 units' pipelines use it to carry a value beside the stages that
+// compute others (datapath only: valid bits, which are reset, are kept by
+// the unit itself).
 `default_nettype none
 
 module pluecker_pipe #(

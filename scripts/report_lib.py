@@ -107,7 +107,13 @@ def device_capacity(synth_dir: Path) -> tuple[dict, str]:
 def hardware(synth_dir: Path, c: int, d: int, capacity: dict) -> dict | None:
     """Cost and derived throughput of one width pair from `make synth`'s
     summary; None when it has not been measured."""
-    s = read_json(synth_dir / pair_name(c, d) / "summary.json")
+    return hardware_of(synth_dir, pair_name(c, d), capacity)
+
+
+def hardware_of(synth_dir: Path, name: str, capacity: dict) -> dict | None:
+    """The same for any synthesised unit: out/synth/<name>/summary.json
+    (a width pair CxD, or a binary32 unit, e.g. float_dsp4)."""
+    s = read_json(synth_dir / name / "summary.json")
     if s is None:
         return None
     u = s.get("utilisation", {})
@@ -128,7 +134,8 @@ def hardware(synth_dir: Path, c: int, d: int, capacity: dict) -> dict | None:
     per_unit = {sp: f * 1e6 for sp, f in fmax.items()}  # one box test per clock
     per_chip = {sp: v * units for sp, v in per_unit.items()} if units else {}
     return {
-        "summary": rel(synth_dir / pair_name(c, d) / "summary.json"),
+        "summary": rel(synth_dir / name / "summary.json"),
+        "design": s.get("design"), "mul_dsp": s.get("mul_dsp"), "conservative": s.get("conservative"),
         "pnr": bool(s.get("pnr")),
         "LUT4": u.get("LUT4"), "CCU2C": u.get("CCU2C"), "TRELLIS_FF": u.get("TRELLIS_FF"),
         "dut_ff": u.get("dut_ff"), "harness_ff": u.get("harness_ff"), "MULT18X18D": mult,

@@ -1,24 +1,31 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""ECP5 synthesis and place-and-route of pluecker_intersector (LFE5U-85F),
-and with --local of pluecker_local_intersector or its child datapath alone.
+"""ECP5 synthesis and place-and-route of a box-test unit (LFE5U-85F): the
+fixed-point pluecker_intersector (--unit fixed, the default), a binary32
+unit (--unit float: pluecker_float_intersector; --unit smits:
+pluecker_smits_intersector), and with --local pluecker_local_intersector or
+its child datapath alone.
 
-Flow per width pair (COORD_BITS x DIR_BITS):
+Flow per width pair (COORD_BITS x DIR_BITS; one run for a binary32 unit):
   1. Yosys `synth_ecp5 -json` of rtl/*.sv under the out-of-context harness
-     fpga/ooc_wrapper.sv (registered ports), plus `stat -json`.
+     fpga/ooc_wrapper.sv (fpga/ooc_float_wrapper.sv for the binary32 units;
+     registered ports), plus `stat -json`.
   2. nextpnr-ecp5 --85k --package CABGA381 --out-of-context --freq F
      for every speed grade x seed (at most 2 runs at a time), each writing
      its JSON report (--report).
   3. The reports (never the logs) give utilisation, Fmax per clock and the
      critical path; out/synth/<C>x<D>/summary.json collects them.
 LATENCY, the FIFO depth and the number of MULT18X18D come from the port
-contract (rtl/pluecker_contract.json through scripts/contract.py); the RTL
-checks at elaboration that it derives the same, and the flow fails when the
-netlist's MULT18X18D count differs from the contract's.
+contract (rtl/pluecker_contract.json, rtl/pluecker_contract_float.json
+through scripts/contract.py); the RTL checks at elaboration that it derives
+the same, and the flow fails when the netlist's MULT18X18D count differs
+from the contract's.
 
 Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary;
 --mul-style and --pipeline other than the defaults add _<style> and _p<P>
-to the directory name). `--no-pnr` stops after Yosys (utilisation only).
+to the directory name), out/synth/<unit>[_cons]_dsp<M>/summary.json for a
+binary32 unit (--mul-dsp M, --conservative 1). `--no-pnr` stops after Yosys
+(utilisation only).
 
 The local unit (--local, the local port contract
 rtl/pluecker_local_contract.json): --local-widths KxDxG[,...] (default
@@ -129,10 +136,11 @@ def tool_version(tool: str, flag: str) -> str:
 # --------------------------------------------------------------------------
 # Sources, parameters
 
-def rtl_sources(rtl_dir: Path) -> list[Path]:
+def rtl_sources(rtl_dir: Path, duts: list[str]) -> list[Path]:
     files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")))
-    if not any(f.stem == DUT for f in files):
-        raise FlowError(f"{rtl_dir}/{DUT}.sv not found (the RTL is missing)")
+    for dut in duts:
+        if not any(f.stem == dut for f in files):
+            raise FlowError(f"{rtl_dir}/{dut}.sv not found (the RTL is missing)")
     return files
 
 
@@ -212,8 +220,9 @@ def netlist_info(netlist_path: Path, design: Design) -> tuple[dict[str, str], in
     """(cell name -> type, number of flip-flops of the harness).
 
     A flip-flop belongs to the harness when its Yosys 'src' attribute points
-    into fpga/ooc_wrapper.sv only, or when it has no source and its name is
-    not in the u_dut hierarchy."""
+    into the harness file only, or when it has no source and its name is not
+    in the u_dut hierarchy (of the wrapper, or of one of its generate
+    blocks)."""
     with open(netlist_path) as f:
         nl = json.load(f)
     top = nl["modules"][design.top]
@@ -225,7 +234,7 @@ def netlist_info(netlist_path: Path, design: Design) -> tuple[dict[str, str], in
             srcs = design_sources(cell.get("attributes", {}).get("src", ""))
             if srcs and all(design.wrapper.name in s for s in srcs):
                 harness_ff += 1
-            elif not srcs and not name.startswith("u_dut."):
+            elif not srcs and not re.match(r"^(g_\w+\.)?u_dut\.", name):
                 harness_ff += 1  # e.g. output flops merged with a RAM read port
     return types, harness_ff
 
@@ -437,7 +446,7 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         **design.fields,
         "tag_bits": args.tag_bits,
         "conservative": args.conservative,
-        "mul_style": args.mul_style,
+        "mul_style": design.params.get("MUL_STYLE"),
         **{k: row[k] for k in ("multiplier", "frame_multiplier", "child_multiplier") if k in row},
         "latency": row.get("latency"), "fifo_depth": row.get("fifo_depth"),
         "device": DEVICE, "package": PACKAGE, "out_of_context": True,
@@ -500,7 +509,27 @@ def global_design(c: int, d: int, args) -> Design:
     params = {"COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
               "CONSERVATIVE": args.conservative, "MUL_STYLE": args.mul_style, "PIPELINE": args.pipeline}
     return Design(name, TOP, WRAPPER, DUT, params, row,
-                  {"config": f"{c}x{d}", "coord_bits": c, "dir_bits": d, "pipeline": args.pipeline})
+                  {"config": f"{c}x{d}", "unit": "fixed", "name": name, "coord_bits": c, "dir_bits": d,
+                   "pipeline": args.pipeline})
+
+
+FLOAT_WRAPPER = ROOT / "fpga" / "ooc_float_wrapper.sv"
+
+
+def float_design(args) -> Design:
+    try:
+        row = contract.float_unit(args.unit, args.mul_dsp)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    if args.conservative not in row["conservative"]:
+        raise FlowError(f"--conservative {args.conservative}: {row['module']} takes {row['conservative']}")
+    params = {"UNIT": args.unit, "TAG_BITS": args.tag_bits, "MUL_DSP": row["mul_dsp"]}
+    if args.unit == "float":
+        params["CONSERVATIVE"] = args.conservative
+    name = f"{args.unit}{'_cons' if args.conservative else ''}_dsp{row['mul_dsp']}"
+    row = dict(row, multiplier=f"{row['mul_dsp']} MULT18X18D per significand product")
+    return Design(name, "ooc_float_wrapper", FLOAT_WRAPPER, row["module"], params, row,
+                  {"config": name, "unit": args.unit, "name": name, "mul_dsp": row["mul_dsp"]})
 
 
 LOCAL_WRAPPER = ROOT / "fpga" / "ooc_local_wrapper.sv"
@@ -584,8 +613,14 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--coord-bits", type=int, default=16)
     p.add_argument("--dir-bits", type=int, default=16)
     p.add_argument("--widths", help="list of CxD pairs, e.g. 12x12,16x16 (overrides --coord/dir-bits)")
+    p.add_argument("--unit", choices=("fixed", "float", "smits"), default="fixed",
+                   help="fixed: pluecker_intersector; float: pluecker_float_intersector; "
+                        "smits: pluecker_smits_intersector")
     p.add_argument("--tag-bits", type=int, default=16)
-    p.add_argument("--conservative", type=int, choices=(0, 1), default=1)
+    p.add_argument("--conservative", type=int, choices=(0, 1), default=None,
+                   help="CONSERVATIVE (default 1 for fixed and --local, 0 for float)")
+    p.add_argument("--mul-dsp", type=int, default=None,
+                   help="MUL_DSP of a binary32 unit (default the port contract's)")
     lim = contract.load()["limits"]
     p.add_argument("--mul-style", choices=lim["mul_styles"], default="auto", help="MUL_STYLE")
     p.add_argument("--pipeline", type=int, choices=range(lim["pipeline"][0], lim["pipeline"][1] + 1),
@@ -604,6 +639,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                    help="--local: the unit, or its child datapath alone")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
+    if args.local and args.unit != "fixed":
+        p.error("--local is the local fixed-point unit; it takes no --unit " + args.unit)
+    if args.conservative is None:
+        args.conservative = 1 if args.unit == "fixed" else 0
+    if args.unit == "fixed" and args.mul_dsp is not None:
+        p.error("--mul-dsp is a parameter of the binary32 units (--unit float or smits)")
     if args.smoke:
         args.seeds, args.speeds = 1, "8"
     if args.out is None:
@@ -624,11 +665,13 @@ def main(argv: list[str]) -> int:
     try:
         if args.local:
             designs = [local_design(k, d, g, args) for k, d, g in parse_local_widths(args.local_widths)]
+        elif args.unit != "fixed":
+            designs = [float_design(args)]
         else:
             pairs = parse_widths(args.widths) if args.widths else parse_widths(
                 f"{args.coord_bits}x{args.dir_bits}")
             designs = [global_design(c, d, args) for c, d in pairs]
-        sources = rtl_sources(Path(args.rtl))
+        sources = rtl_sources(Path(args.rtl), sorted({dsg.dut for dsg in designs}))
         yosys = yosys_tool()
         nextpnr = nextpnr_tool()
         if not yosys:

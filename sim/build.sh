@@ -9,7 +9,13 @@
 # 8), DIR_BITS (4..24, default BOX_BITS + 3), GRID_BITS (BOX_BITS+2..32,
 # default 32), CHILDREN (1..2, default 1), MUL_STYLE (auto|dsp|lut, default
 # auto) and MODE; SIM_OUT defaults to
-# build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>].
+# build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>]. SIM_UNIT=float
+# (rtl/pluecker_float_intersector.sv) or smits
+# (rtl/pluecker_smits_intersector.sv) builds `pluecker_sim` of a binary32
+# unit with the harness in sim/float/: MODE defaults to nearest (float:
+# conservative = CONSERVATIVE 1; smits has nearest only), SIM_MUL_DSP (1, 3
+# or 4; default the contract's) is MUL_DSP, the widths are not used, and
+# SIM_OUT defaults to build/sim/<unit>[_cons]_dsp<M>.
 #
 # Settings (environment): COORD_BITS, DIR_BITS (the port contract's limits,
 # 6..24; default 16),
@@ -33,7 +39,10 @@ die() {
 }
 
 unit="${SIM_UNIT:-global}"
-MODE="${MODE:-conservative}"
+case "$unit" in
+  float | smits) MODE="${MODE:-nearest}" ;;
+  *) MODE="${MODE:-conservative}" ;;
+esac
 T="${SIM_TAG_BITS:-8}"
 jobs="${SIM_JOBS:-2}"
 is_int_in() {  # <value> <lo> <hi>
@@ -87,7 +96,17 @@ case "$unit" in
       -DSIM_MUL_STYLE="$style")
     binary=pluecker_sim_local
     ;;
-  *) die "SIM_UNIT=$unit is not one of global, local" ;;
+  float | smits)
+    [[ "$unit" == smits && "$MODE" == conservative ]] && die "SIM_UNIT=smits has no conservative variant (MODE=nearest)"
+    mul_dsps="$(python3 "$root/scripts/contract.py" float-limits)" || die "cannot read the float port contract"
+    M="${SIM_MUL_DSP:-$(sed -n 's/^default_mul_dsp=//p' <<< "$mul_dsps")}"
+    [[ " $(sed -n 's/^mul_dsp=//p' <<< "$mul_dsps") " == *" $M "* ]] ||
+      die "SIM_MUL_DSP=$M is not one of $(sed -n 's/^mul_dsp=//p' <<< "$mul_dsps")"
+    default_out="build/sim/${unit}$([[ $MODE == conservative ]] && echo _cons || true)_dsp${M}"
+    unit_args=(-DSIM_MUL_DSP="$M")
+    binary=pluecker_sim
+    ;;
+  *) die "SIM_UNIT=$unit is not one of global, local, float, smits" ;;
 esac
 is_int_in "$T" 1 16 || die "SIM_TAG_BITS=$T is not an integer in 1..16"
 T=$((10#$T))

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The entry point both harnesses share (pluecker_sim, pluecker_sim_local):
+// The entry point the harnesses share (pluecker_sim of the global and the
+// binary32 units, pluecker_sim_local):
 // usage and --help, the subcommand dispatch and the exit statuses (0 ok,
 // 1 mismatch or RTL protocol error, 2 bad input or options).
 #pragma once

@@ -9,7 +9,9 @@
 #include "pluecker/app/names.hpp"  // parse_fixed_mode
 #include "pluecker/boxtest.hpp"
 #include "pluecker/contract.hpp"
+#include "pluecker/f32unit.hpp"
 #include "pluecker/fixed.hpp"
+#include "pluecker/float_contract.hpp"
 #include "pluecker/geometry.hpp"
 #include "pluecker/local.hpp"
 #include "pluecker/local_contract.hpp"
@@ -282,6 +284,54 @@ py::list local_render_queries(const std::string& scene, int size, const LocalFor
 }
 
 Query make_query(const Ray& r, const Box& b) { return Query{r, b}; }
+
+// --- binary32 units -----------------------------------------------------------
+
+f32::Round round_arg(const std::string& name) {
+    if (name == "nearest") return f32::Round::Nearest;
+    if (name == "up") return f32::Round::Up;
+    if (name == "down") return f32::Round::Down;
+    throw InputError("round '" + name + "' is not one of nearest, up, down");
+}
+
+// A binary32 bit pattern from Python: an int in 0..2^32 - 1.
+f32::Bits bits_arg(long long v, const char* what) {
+    if (v < 0 || v > 0xffffffffll)
+        throw InputError(std::string(what) + " = " + std::to_string(v) + " is not a 32-bit pattern (0..2^32 - 1)");
+    return static_cast<f32::Bits>(v);
+}
+
+std::array<f32::Bits, 3> bits3_arg(const std::array<long long, 3>& v, const char* what) {
+    return {bits_arg(v[0], what), bits_arg(v[1], what), bits_arg(v[2], what)};
+}
+
+RayClass class_arg(int c) {
+    if (c < 0 || c > 7) throw InputError("ray class " + std::to_string(c) + " is outside 0..7");
+    return static_cast<RayClass>(c);
+}
+
+// The input port values of a float unit's query (float_contract.hpp), as
+// Python ints.
+py::dict float_ports(const std::vector<FloatPortValue>& values) {
+    py::dict d;
+    for (const FloatPortValue& v : values) d[py::str(v.name)] = port_int(v.value);
+    return d;
+}
+
+std::string hex3(const std::array<f32::Bits, 3>& v) {
+    std::ostringstream s;
+    s << std::hex << "(0x" << v[0] << ", 0x" << v[1] << ", 0x" << v[2] << ")";
+    return s.str();
+}
+
+FloatRtlConfig make_float_config(const std::string& unit, int tag_bits, bool conservative, int mul_dsp) {
+    FloatRtlConfig c;
+    c.unit = parse_float_unit(unit);
+    c.tag_bits = tag_bits;
+    c.conservative = conservative;
+    c.mul_dsp = mul_dsp;
+    return c;
+}
 
 // Setter of FixedFormat.coord_bits / dir_bits: a width outside
 // MIN_BITS..MAX_BITS would reach shifts by a negative or too large count
@@ -570,6 +620,127 @@ PYBIND11_MODULE(pluecker_py, m) {
                    "', pipeline=" + std::to_string(k.pipeline) + "): LATENCY " + std::to_string(c.latency()) +
                    ", FIFO_DEPTH " + std::to_string(c.fifo_depth());
         });
+    // --- binary32 units (f32unit.hpp, float_contract.hpp) ----------------------
+    m.def("f32_add", [](long long a, long long b, const std::string& r) {
+        return f32::add(bits_arg(a, "a"), bits_arg(b, "b"), round_arg(r));
+    }, py::arg("a"), py::arg("b"), py::arg("round") = "nearest", "pluecker_f32_add (SUB = 0) on bit patterns");
+    m.def("f32_sub", [](long long a, long long b, const std::string& r) {
+        return f32::sub(bits_arg(a, "a"), bits_arg(b, "b"), round_arg(r));
+    }, py::arg("a"), py::arg("b"), py::arg("round") = "nearest", "pluecker_f32_add (SUB = 1) on bit patterns");
+    m.def("f32_mul", [](long long a, long long b, const std::string& r) {
+        return f32::mul(bits_arg(a, "a"), bits_arg(b, "b"), round_arg(r));
+    }, py::arg("a"), py::arg("b"), py::arg("round") = "nearest", "pluecker_f32_mul on bit patterns");
+    m.def("f32_lt", [](long long a, long long b) { return f32::lt(bits_arg(a, "a"), bits_arg(b, "b")); },
+          py::arg("a"), py::arg("b"));
+    m.def("f32_le", [](long long a, long long b) { return f32::le(bits_arg(a, "a"), bits_arg(b, "b")); },
+          py::arg("a"), py::arg("b"));
+    m.def("f32_bits", &f32::bits_of, py::arg("x"), "The binary32 bit pattern of a float");
+    m.def("f32_value", [](long long b) { return f32::float_of(bits_arg(b, "bits")); }, py::arg("bits"));
+
+    py::class_<F32PlueckerQuery>(m, "F32PlueckerQuery",
+                                 "A query of rtl/pluecker_float_intersector.sv: binary32 bit patterns")
+        .def(py::init([](int cls, const std::array<long long, 3>& org, const std::array<long long, 3>& dir,
+                         const std::array<long long, 3>& end, bool has_end, const std::array<long long, 3>& lo,
+                         const std::array<long long, 3>& hi) {
+                 F32PlueckerQuery q;
+                 q.cls = class_arg(cls);
+                 q.org = bits3_arg(org, "org");
+                 q.dir = bits3_arg(dir, "dir");
+                 q.end = bits3_arg(end, "end");
+                 q.has_end = has_end;
+                 q.lo = bits3_arg(lo, "lo");
+                 q.hi = bits3_arg(hi, "hi");
+                 return q;
+             }),
+             py::arg("cls"), py::arg("org"), py::arg("dir"), py::arg("end"), py::arg("has_end"), py::arg("lo"),
+             py::arg("hi"))
+        .def_property_readonly("cls", [](const F32PlueckerQuery& q) { return static_cast<int>(q.cls); })
+        .def_readonly("org", &F32PlueckerQuery::org)
+        .def_readonly("dir", &F32PlueckerQuery::dir)
+        .def_readonly("end", &F32PlueckerQuery::end)
+        .def_readonly("has_end", &F32PlueckerQuery::has_end)
+        .def_readonly("lo", &F32PlueckerQuery::lo)
+        .def_readonly("hi", &F32PlueckerQuery::hi)
+        .def("ports", [](const F32PlueckerQuery& q) { return float_ports(pack_float_query(q)); },
+             "Input port values (the port contract's packing, float_contract.hpp)")
+        .def("__repr__", [](const F32PlueckerQuery& q) {
+            return "F32PlueckerQuery(cls=" + std::to_string(q.cls) + ", org=" + hex3(q.org) + ", dir=" + hex3(q.dir) +
+                   ", end=" + hex3(q.end) + ", has_end=" + (q.has_end ? "True" : "False") + ", lo=" + hex3(q.lo) +
+                   ", hi=" + hex3(q.hi) + ")";
+        });
+    m.def("f32_pluecker_query", [](const Query& q, bool conservative) {
+        validate_query(q, "f32_pluecker_query");
+        return f32_pluecker_query(q.ray, q.box, conservative);
+    }, py::arg("query"), py::arg("conservative") = false,
+          "The ray set-up of the Plücker float unit (pluecker_setup; conservative: the end rounded outward)");
+    m.def("f32_pluecker_hit", py::overload_cast<const F32PlueckerQuery&, bool>(&f32_pluecker_hit), py::arg("query"),
+          py::arg("conservative") = false, "The Plücker float unit's answer, bit for bit the RTL's");
+
+    py::class_<F32SmitsQuery>(m, "F32SmitsQuery", "A query of rtl/pluecker_smits_intersector.sv: bit patterns")
+        .def(py::init([](int cls, const std::array<long long, 3>& org, const std::array<long long, 3>& inv,
+                         long long tmax, const std::array<long long, 3>& lo, const std::array<long long, 3>& hi) {
+                 F32SmitsQuery q;
+                 q.cls = class_arg(cls);
+                 q.org = bits3_arg(org, "org");
+                 q.inv = bits3_arg(inv, "inv");
+                 q.tmax = bits_arg(tmax, "tmax");
+                 q.lo = bits3_arg(lo, "lo");
+                 q.hi = bits3_arg(hi, "hi");
+                 return q;
+             }),
+             py::arg("cls"), py::arg("org"), py::arg("inv"), py::arg("tmax"), py::arg("lo"), py::arg("hi"))
+        .def_property_readonly("cls", [](const F32SmitsQuery& q) { return static_cast<int>(q.cls); })
+        .def_readonly("org", &F32SmitsQuery::org)
+        .def_readonly("inv", &F32SmitsQuery::inv)
+        .def_readonly("tmax", &F32SmitsQuery::tmax)
+        .def_readonly("lo", &F32SmitsQuery::lo)
+        .def_readonly("hi", &F32SmitsQuery::hi)
+        .def("ports", [](const F32SmitsQuery& q) { return float_ports(pack_float_query(q)); },
+             "Input port values (the port contract's packing, float_contract.hpp)")
+        .def("__repr__", [](const F32SmitsQuery& q) {
+            std::ostringstream t;
+            t << std::hex << "0x" << q.tmax;
+            return "F32SmitsQuery(cls=" + std::to_string(q.cls) + ", org=" + hex3(q.org) + ", inv=" + hex3(q.inv) +
+                   ", tmax=" + t.str() + ", lo=" + hex3(q.lo) + ", hi=" + hex3(q.hi) + ")";
+        });
+    m.def("f32_smits_query", [](const Query& q) {
+        validate_query(q, "f32_smits_query");
+        return f32_smits_query(q.ray, q.box);
+    }, py::arg("query"), "The ray set-up of the slab float unit (smits_setup: inv = 1/d in host float)");
+    m.def("f32_smits_hit", py::overload_cast<const F32SmitsQuery&>(&f32_smits_hit), py::arg("query"),
+          "The slab float unit's answer, bit for bit the RTL's");
+
+    py::class_<FloatPortContract>(m, "FloatPortContract",
+                                  "The port contract of a binary32 unit (float_contract.hpp): 'float' is "
+                                  "rtl/pluecker_float_intersector.sv, 'smits' rtl/pluecker_smits_intersector.sv")
+        .def(py::init([](const std::string& unit, int tag_bits, bool conservative, int mul_dsp) {
+                 return FloatPortContract(make_float_config(unit, tag_bits, conservative, mul_dsp));
+             }),
+             py::arg("unit"), py::arg("tag_bits") = ContractDefaults::kTagBits, py::arg("conservative") = false,
+             py::arg("mul_dsp") = FloatLimits::kDefaultMulDsp)
+        .def_property_readonly("unit", [](const FloatPortContract& c) { return float_unit_name(c.config().unit); })
+        .def_property_readonly("module", &FloatPortContract::module)
+        .def_property_readonly("tag_bits", [](const FloatPortContract& c) { return c.config().tag_bits; })
+        .def_property_readonly("conservative", [](const FloatPortContract& c) { return c.config().conservative; })
+        .def_property_readonly("mul_dsp", [](const FloatPortContract& c) { return c.config().mul_dsp; })
+        .def_property_readonly("adders", &FloatPortContract::adders)
+        .def_property_readonly("multipliers", &FloatPortContract::multipliers)
+        .def_property_readonly("latency", &FloatPortContract::latency)
+        .def_property_readonly("fifo_depth", &FloatPortContract::fifo_depth)
+        .def_property_readonly("dsp_blocks", &FloatPortContract::dsp_blocks)
+        .def_property_readonly("ports", &FloatPortContract::ports)
+        .def("port", &FloatPortContract::port, py::arg("name"), py::return_value_policy::copy)
+        .def_readonly_static("ADD_LATENCY", &FloatLimits::kAddLatency)
+        .def_readonly_static("MUL_LATENCY", &FloatLimits::kMulLatency)
+        .def_readonly_static("DEFAULT_MUL_DSP", &FloatLimits::kDefaultMulDsp)
+        .def("__repr__", [](const FloatPortContract& c) {
+            return std::string("FloatPortContract(") + float_unit_name(c.config().unit) +
+                   ", tag_bits=" + std::to_string(c.config().tag_bits) +
+                   ", conservative=" + (c.config().conservative ? "True" : "False") +
+                   ", mul_dsp=" + std::to_string(c.config().mul_dsp) + "): LATENCY " + std::to_string(c.latency()) +
+                   ", FIFO_DEPTH " + std::to_string(c.fifo_depth());
+        });
+
     m.def("contract_classes", [] {
         py::list out;
         for (const ContractClass& k : contract_classes()) out.append(class_dict(k));

@@ -139,6 +139,29 @@ class UnitBench:
 # The tests every unit bench runs (the benches' cocotb tests call them)
 # ---------------------------------------------------------------------------
 
+def latency_text(dut) -> str:
+    """The DUT's LATENCY localparam for messages ("?" in a flattened netlist)."""
+    try:
+        return str(int(dut.LATENCY.value))
+    except AttributeError:
+        return "?"
+
+
+def check_contract(bench: UnitBench, contract) -> tuple[int, int]:
+    """The DUT's LATENCY and FIFO_DEPTH localparams and its port widths must
+    be the port contract's (`contract`: computed from the DUT's parameters
+    alone, with latency, fifo_depth and ports); returns (LATENCY, FIFO depth)."""
+    dut = bench.dut
+    latency, depth = contract.latency, contract.fifo_depth
+    dut_values = (int(dut.LATENCY.value), int(dut.FIFO_DEPTH.value))
+    assert dut_values == (latency, depth), (
+        f"DUT LATENCY, FIFO_DEPTH = {dut_values}, port contract {(latency, depth)} ({contract!r})")
+    for port in contract.ports:
+        assert len(getattr(dut, port.name)) == port.width, (
+            f"{port.name}: {len(getattr(dut, port.name))} bits, port contract {port.width}")
+    return latency, depth
+
+
 async def reset_mid_stream(bench: UnitBench, vectors) -> int:
     """Drives `vectors` while resets of 1..7 cycles come every 10..200
     cycles: every query accepted before a reset must vanish (the bench's

@@ -76,3 +76,36 @@ def test_hardware_figures_from_a_summary(tmp_path):
     bpr = j["scenes"]["sphere:500"]["widths"][1]["work"]["per_ray"]["box_tests"]
     assert d["rays_per_s_per_chip"]["8"] == pytest.approx(13 * 150e6 / bpr)
     assert (out / "plots" / "hardware.png").exists()
+
+
+def test_float32_comparison(tmp_path):
+    """A binary32 unit's summary beside the fixed-point 16/16: the area and
+    per-chip ratios and the rays per chip at the reference's box tests per
+    ray, with the unit's false misses from the study."""
+    synth = tmp_path / "synth"
+    fixed = {"utilisation": {"LUT4": 400, "CCU2C": 400, "TRELLIS_FF": 1000, "MULT18X18D": 12,
+                             "placed": {"TRELLIS_COMB": 1300, "TRELLIS_FF": 1000, "MULT18X18D": 12}},
+             "latency": 6, "pnr": True, "fmax_mhz": {"8": {"median": 240.0, "min": 240.0, "max": 240.0, "seeds": 1}}}
+    flt = {"utilisation": {"LUT4": 6000, "CCU2C": 3000, "TRELLIS_FF": 12000, "MULT18X18D": 12,
+                           "placed": {"TRELLIS_COMB": 13000, "TRELLIS_FF": 12000, "MULT18X18D": 12}},
+           "latency": 18, "pnr": True, "design": "pluecker_float_intersector", "mul_dsp": 1,
+           "fmax_mhz": {"8": {"median": 120.0, "min": 120.0, "max": 120.0, "seeds": 1}}}
+    for name, summ in (("16x16", fixed), ("float_dsp1", flt)):
+        (synth / name).mkdir(parents=True)
+        (synth / name / "summary.json").write_text(json.dumps(summ))
+    out, log = run_report(tmp_path, synth)
+    j = json.loads((out / "report.json").read_text())
+    fl = j["float32"]
+    assert set(fl["hardware"]) == {"float_dsp1"}
+    u = fl["hardware"]["float_dsp1"]
+    assert u["units_per_chip"] == 83640 // 13000 and u["limited_by"].startswith("LUT4")
+    (cmp,) = [r for r in fl["comparison"] if r["fixed"] == "16x16"]
+    assert cmp["area_placed_comb"] == pytest.approx(13000 / 1300)
+    assert cmp["chip_ratio"]["8"] == pytest.approx((13 * 240e6) / (6 * 120e6))
+    rows = {r["config"]: r for r in fl["rays"]["sphere:500"]}
+    s = j["scenes"]["sphere:500"]
+    assert rows["float_dsp1"]["box_tests_per_ray"] == s["reference"]["per_ray"]["box_tests"]
+    assert rows["float_dsp1"]["false_misses"] == s["queries"]["f32_pluecker"]["false_misses"]
+    assert rows["fixed 16x16"]["false_misses"] == 0
+    assert "float_dsp1 against fixed 16x16" in log
+    assert "Fixed point against float32" in (out / "report.html").read_text()

@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: MIT
 // `pluecker contract`: the port contract of rtl/pluecker_intersector.sv (or,
-// with --local, of rtl/pluecker_local_intersector.sv) for one configuration,
-// and the generated files that carry both to the RTL and the scripts
-// (model/core/include/pluecker/contract.hpp, local_contract.hpp).
+// with --local, of rtl/pluecker_local_intersector.sv; with --unit, of a
+// binary32 unit) for one configuration, and the generated files that carry
+// them to the RTL and the scripts (model/core/include/pluecker/contract.hpp,
+// local_contract.hpp, float_contract.hpp).
 #include "commands.hpp"
 #include "pluecker/app/names.hpp"
 
 #include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
+#include "pluecker/float_contract.hpp"
 #include "pluecker/local_contract.hpp"
 
 #include <cstdio>
@@ -24,14 +26,19 @@ constexpr const char* kUsage =
     "                         [--mul-style STYLE] [--pipeline P]\n"
     "       pluecker contract --local [--box-bits K] [--dir-bits D] [--grid-bits G]\n"
     "                         [--children C] [--tag-bits T] [--mode MODE] [--mul-style STYLE]\n"
+    "       pluecker contract --unit float|smits [--tag-bits T] [--mode MODE] [--mul-dsp M]\n"
     "       pluecker contract --write DIR | --check DIR\n"
     "Prints the port contract of rtl/pluecker_intersector.sv (with --local: of\n"
     "rtl/pluecker_local_intersector.sv) for one configuration: the constants the RTL\n"
     "derives from its parameters (multipliers, adder stages, LATENCY, FIFO_DEPTH,\n"
-    "MULT18X18D) and its ports with their fields (x in the low field).\n"
-    "--write DIR writes the generated files DIR/pluecker_contract_pkg.sv and\n"
-    "DIR/pluecker_local_contract_pkg.sv (read by the RTL), DIR/pluecker_contract.json\n"
-    "and DIR/pluecker_local_contract.json (read by scripts/contract.py); --check DIR\n"
+    "MULT18X18D) and its ports with their fields (x in the low field). With --unit,\n"
+    "the contract of a binary32 unit instead (float_contract.hpp): 'float' is\n"
+    "rtl/pluecker_float_intersector.sv (--mode conservative: CONSERVATIVE = 1,\n"
+    "default nearest), 'smits' rtl/pluecker_smits_intersector.sv; --mul-dsp is MUL_DSP.\n"
+    "--write DIR writes the generated files DIR/pluecker_contract_pkg.sv,\n"
+    "DIR/pluecker_local_contract_pkg.sv and DIR/pluecker_contract_float_pkg.sv (read by\n"
+    "the RTL), DIR/pluecker_contract.json, DIR/pluecker_local_contract.json and\n"
+    "DIR/pluecker_contract_float.json (read by scripts/contract.py); --check DIR\n"
     "exits 1 when they differ from what --write would write. Regenerate the\n"
     "committed copies with 'pluecker contract --write rtl' (make contract).\n"
     "options:\n"
@@ -41,6 +48,8 @@ constexpr const char* kUsage =
     "  --mode MODE       conservative (CONSERVATIVE = 1) or nearest (0)   [conservative]\n"
     "  --mul-style S     MUL_STYLE: auto, dsp or lut                      [auto]\n"
     "  --pipeline P      PIPELINE, 0..1                                   [0]\n"
+    "  --unit U          float or smits: a binary32 unit's contract\n"
+    "  --mul-dsp M       MUL_DSP of a binary32 unit: 1, 3 or 4            [4]\n"
     "with --local:\n"
     "  --box-bits K      BOX_BITS, 4..16                                  [8]\n"
     "  --dir-bits D      DIR_BITS, 4..24                                  [11]\n"
@@ -63,6 +72,8 @@ struct Generated {
 int write_or_check(const std::string& dir, bool write) {
     const Generated files[] = {{kContractSvFile, contract_sv_package()},
                                {kContractJsonFile, contract_json()},
+                               {kFloatContractSvFile, float_contract_sv_package()},
+                               {kFloatContractJsonFile, float_contract_json()},
                                {kLocalContractSvFile, local_contract_sv_package()},
                                {kLocalContractJsonFile, local_contract_json()}};
     int stale = 0;
@@ -172,12 +183,24 @@ int local_contract_command(const Args& a) {
     return 0;
 }
 
+void print_float_contract(const FloatPortContract& pc) {
+    const FloatRtlConfig& c = pc.config();
+    std::printf("%s: TAG_BITS %d, CONSERVATIVE %d, MUL_DSP %d\n", pc.module(), c.tag_bits, c.conservative ? 1 : 0,
+                c.mul_dsp);
+    std::printf("  adders        %d (pluecker_f32_add, latency %d)\n", pc.adders(), FloatLimits::kAddLatency);
+    std::printf("  multipliers   %d (pluecker_f32_mul, latency %d), %d MULT18X18D\n", pc.multipliers(),
+                FloatLimits::kMulLatency, pc.dsp_blocks());
+    std::printf("  LATENCY       %d\n", pc.latency());
+    std::printf("  FIFO_DEPTH    %d\n", pc.fifo_depth());
+    print_ports(pc.ports());
+}
+
 }  // namespace
 
 int cmd_contract(const std::vector<std::string>& argv) {
     const Args a(argv,
                  {"coord-bits", "dir-bits", "tag-bits", "mode", "mul-style", "pipeline", "write", "check", "box-bits",
-                  "grid-bits", "children"},
+                  "grid-bits", "children", "unit", "mul-dsp"},
                  {"help", "local"});
     if (a.has("help")) {
         std::fputs(kUsage, stdout);
@@ -187,6 +210,24 @@ int cmd_contract(const std::vector<std::string>& argv) {
     if (a.has("write") && a.has("check")) throw InputError("options --write and --check exclude each other");
     if (a.has("write")) return write_or_check(a.get("write", ""), true);
     if (a.has("check")) return write_or_check(a.get("check", ""), false);
+    if (a.has("unit")) {
+        if (a.has("local")) throw InputError("options --unit and --local exclude each other");
+        FloatRtlConfig f;
+        try {
+            f.unit = parse_float_unit(a.get("unit", ""));
+        } catch (const InputError& e) {
+            throw InputError(std::string("option --unit: ") + e.what());
+        }
+        f.tag_bits = static_cast<int>(a.get_int("tag-bits", ContractDefaults::kTagBits, FloatLimits::kMinTagBits, 64));
+        f.mul_dsp = static_cast<int>(a.get_int("mul-dsp", FloatLimits::kDefaultMulDsp, 1, 4));
+        try {
+            if (a.has("mode")) f.conservative = parse_fixed_mode(a.get("mode", "")) == FixedMode::Conservative;
+        } catch (const InputError& e) {
+            throw InputError(std::string("option --mode: ") + e.what());
+        }
+        print_float_contract(FloatPortContract(f));
+        return 0;
+    }
     if (a.has("local")) return local_contract_command(a);
     for (const char* opt : {"box-bits", "grid-bits", "children"})
         if (a.has(opt)) throw InputError(std::string("option --") + opt + " needs --local");

@@ -18,6 +18,7 @@ constexpr const char* kUsage =
     "  plan     pick the smallest fixed-point widths a scene needs\n"
     "  study    extra traversal work and accuracy per fixed-point width\n"
     "  contract the RTL's port contract; writes or checks its generated files\n"
+    "  accuracy every box test (float, binary32 units, fixed point) against exact\n"
     "run 'pluecker <command> --help' for its options\n";
 
 }  // namespace
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
         if (cmd == "plan") return cmd_plan(rest);
         if (cmd == "study") return cmd_study(rest);
         if (cmd == "contract") return cmd_contract(rest);
+        if (cmd == "accuracy") return cmd_accuracy(rest);
         std::fprintf(stderr, "pluecker: unknown command '%s'\n%s", cmd.c_str(), kUsage);
         return 2;
     } catch (const pluecker::InputError& e) {

@@ -2,6 +2,7 @@
 #include "pluecker/study.hpp"
 
 #include "pluecker/boxtest.hpp"
+#include "pluecker/f32unit.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -108,6 +109,9 @@ public:
             const bool pl = pluecker_hit(pluecker_setup(q.ray), q.box);
             pluecker.add(exact, pl);
             smits.add(exact, smits_hit(smits_setup(q.ray), q.box));
+            f32.pluecker.add(exact, f32_pluecker_hit(q.ray, q.box, false));
+            f32.pluecker_conservative.add(exact, f32_pluecker_hit(q.ray, q.box, true));
+            f32.smits.add(exact, f32_smits_hit(q.ray, q.box));
             const std::uint32_t node = batch[i].node;
             for (std::size_t k = 0; k < formats_.size(); ++k) {
                 const Format& f = formats_[k];
@@ -122,6 +126,7 @@ public:
     }
 
     HitCounts checked, pluecker, smits;
+    F32Counts f32;
     std::vector<WidthQueries> queries;
 
 private:
@@ -251,6 +256,7 @@ ReferenceRun run_reference(const Mesh& mesh, const Bvh& bvh, const RenderOptions
     r.figures.checked = engine.checked;
     r.pluecker = engine.pluecker;
     r.smits = engine.smits;
+    r.f32 = engine.f32;
     r.queries = std::move(engine.queries);
     return r;
 }
@@ -373,6 +379,7 @@ StudyResult run_study(const Mesh& mesh, const Bvh& bvh, const StudyOptions& opts
         res.reference = r.figures;
         res.pluecker = r.pluecker;
         res.smits = r.smits;
+        res.f32 = r.f32;
         res.queries = std::move(r.queries);
         say("reference (exact answers): " + std::to_string(res.reference.stats.traversal.box_tests) +
             " box tests" + (opts.per_query ? ", per-query figures of " + std::to_string(nw) + " width pairs" : ""));
@@ -570,7 +577,10 @@ nlohmann::json study_json(const StudyResult& r, const Mesh& mesh, const Bvh& bvh
                         {"exact_hits", r.reference.checked.exact_hits},
                         {"exact_misses", r.reference.checked.queries - r.reference.checked.exact_hits},
                         {"pluecker", counts_json(r.pluecker)},
-                        {"smits", counts_json(r.smits)}};
+                        {"smits", counts_json(r.smits)},
+                        {"f32_pluecker", counts_json(r.f32.pluecker)},
+                        {"f32_pluecker_conservative", counts_json(r.f32.pluecker_conservative)},
+                        {"f32_smits", counts_json(r.f32.smits)}};
     }
     nlohmann::json widths = nlohmann::json::array();
     for (std::size_t k = 0; k < r.options.widths.size(); ++k) {

@@ -41,6 +41,12 @@ MulStyle parse_mul_style(const std::string& s) {
     throw InputError("MUL_STYLE '" + s + "' is not one of auto, dsp, lut");
 }
 
+FloatUnit parse_float_unit(const std::string& s) {
+    if (s == "float") return FloatUnit::Pluecker;
+    if (s == "smits") return FloatUnit::Smits;
+    throw InputError("unit '" + s + "' is not one of float, smits");
+}
+
 // ---------------------------------------------------------------------------
 // Widths
 

@@ -19,7 +19,9 @@
 //
 // Per query (on the reference's box queries)
 //   For each width pair and mode, fixed_setup_ray + fixed_quantize_box +
-//   fixed_hit; float pluecker_hit and smits_hit on the same queries.
+//   fixed_hit; float pluecker_hit and smits_hit on the same queries, and
+//   the binary32 units' models (f32unit.hpp: the Plücker unit rounded to
+//   nearest and conservative, the slab unit).
 //     false miss       exact_hit true,  the test false
 //     false hit        exact_hit false, the test true
 //     false-hit rate   false hits / exact misses (the share of boxes the
@@ -87,6 +89,13 @@ struct HitCounts {
     double false_hit_rate() const;
 };
 
+// The binary32 units (f32unit.hpp) on a set of queries, against exact_hit.
+struct F32Counts {
+    HitCounts pluecker;               // f32_pluecker_hit, round to nearest
+    HitCounts pluecker_conservative;  // f32_pluecker_hit, outward rounding
+    HitCounts smits;                  // f32_smits_hit
+};
+
 // The per-query figures of one width pair.
 struct WidthQueries {
     WidthPair widths;
@@ -138,6 +147,7 @@ struct StudyResult {
     std::optional<WorkFigures> direct_exact;
     HitCounts pluecker;                 // float tests on the reference queries
     HitCounts smits;
+    F32Counts f32;                      // the binary32 units on the reference queries
     std::vector<WidthQueries> queries;  // per width (empty without per_query)
     std::vector<WorkFigures> work;      // per width, conservative (empty without work)
     std::vector<WorkFigures> nearest;   // per width, nearest (empty without nearest)
@@ -155,6 +165,7 @@ struct ReferenceRun {
     Image image;
     WorkFigures figures;
     HitCounts pluecker, smits;
+    F32Counts f32;
     std::vector<WidthQueries> queries;
 };
 ReferenceRun run_reference(const Mesh& mesh, const Bvh& bvh, const RenderOptions& opts,

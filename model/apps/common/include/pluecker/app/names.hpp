@@ -8,6 +8,7 @@
 #include "pluecker/bvh.hpp"
 #include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
+#include "pluecker/float_contract.hpp"
 #include "pluecker/study.hpp"
 #include "pluecker/traversal.hpp"
 
@@ -21,6 +22,7 @@ ChildOrder parse_child_order(const std::string& s);    // fixed | dsa | dist
 BuildMethod parse_build_method(const std::string& s);  // median | sah
 FixedMode parse_fixed_mode(const std::string& s);      // conservative | nearest
 MulStyle parse_mul_style(const std::string& s);        // auto | dsp | lut (the RTL's MUL_STYLE)
+FloatUnit parse_float_unit(const std::string& s);      // float | smits (the binary32 units)
 
 // Width list of --widths (`flag` names it in errors):
 //   "A:B:S"          A, A+S, ..., <= B, COORD_BITS = DIR_BITS (S >= 1;
