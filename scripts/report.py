@@ -172,7 +172,7 @@ def local_key(c: dict) -> str:
     return f"K{c['box_bits']} D{c['dir_bits']} G{c['grid_bits']}"
 
 
-def local_hardware(studies: dict, synth_dir: Path) -> dict:
+def local_hardware(studies: dict, synth_dir: Path, cap: dict) -> dict:
     """The local unit's synthesis summaries (make synth-local) of the
     studied configurations: out/synth/local_k<K>_d<D>_g<G>_c<C>[_style]."""
     out = {}
@@ -180,15 +180,9 @@ def local_hardware(studies: dict, synth_dir: Path) -> dict:
         for c in j.get("local", {}).get("configs", []):
             stem = f"local_k{c['box_bits']}_d{c['dir_bits']}_g{c['grid_bits']}_c"
             for d in sorted(synth_dir.glob(stem + "*")):
-                sm = rl.read_json(d / "summary.json")
-                if sm and sm.get("box_tests_per_s_per_chip"):
-                    u = sm.get("utilisation", {})
-                    out[d.name] = {"key": local_key(c), "children": sm.get("children"),
-                                   "LUT4": u.get("LUT4"), "CCU2C": u.get("CCU2C"), "TRELLIS_FF": u.get("TRELLIS_FF"),
-                                   "MULT18X18D": u.get("MULT18X18D"), "latency": sm.get("latency"),
-                                   "units_per_chip": sm.get("units_per_chip"), "limited_by": sm.get("limited_by"),
-                                   "fmax_mhz": {sp: f["median"] for sp, f in sm.get("fmax_mhz", {}).items()},
-                                   "box_tests_per_s_per_chip": sm["box_tests_per_s_per_chip"]}
+                h = rl.hardware_of(synth_dir, d.name, cap)
+                if h and h["box_tests_per_s_per_chip"]:
+                    out[d.name] = dict(h, key=local_key(c))
     return out
 
 
@@ -541,9 +535,9 @@ def local_hardware_section(lhw: dict, lder: dict, speeds: list[str]) -> list[str
         return b + ["<p>Not synthesised for the studied box widths (<code>make synth-local BOX_BITS=K "
                     "CHILDREN=2</code>).</p>"]
     sp_all = sorted({sp for h in lhw.values() for sp in h["box_tests_per_s_per_chip"]})
-    rows = [[u, h["children"], h["LUT4"], h["CCU2C"], h["TRELLIS_FF"], h["MULT18X18D"], h["latency"],
+    rows = [[u, h["box_tests_per_clock"], h["LUT4"], h["CCU2C"], h["TRELLIS_FF"], h["MULT18X18D"], h["latency"],
              h["units_per_chip"], h["limited_by"] or "–"]
-            + [h["fmax_mhz"].get(sp, "–") for sp in sp_all]
+            + [h["fmax_mhz"][sp]["median"] if sp in h["fmax_mhz"] else "–" for sp in sp_all]
             + [h["box_tests_per_s_per_chip"].get(sp, 0) / 1e9 for sp in sp_all] for u, h in lhw.items()]
     b.append(table(["unit", "children / query", "LUT4", "CCU2C", "FF", "MULT18X18D", "latency", "units/chip",
                     "limited by"] + [f"Fmax MHz speed {sp}" for sp in sp_all]
@@ -721,7 +715,7 @@ def main(argv) -> int:
         say(f"report: {r['float']} against fixed {r['fixed']}: LUT4 slots x{fmt(r['area_placed_comb'], 2)}, "
             f"MULT18X18D x{fmt(r['area_MULT18X18D'], 2)}, box tests/s per chip fixed : float "
             + ", ".join(f"{fmt(v, 2)} (speed {sp})" for sp, v in sorted(r["chip_ratio"].items())))
-    lhw = local_hardware(studies, synth_dir)
+    lhw = local_hardware(studies, synth_dir, cap)
     lder = local_derived(studies, lhw, der)
 
     t = time.monotonic()

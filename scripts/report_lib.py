@@ -112,7 +112,8 @@ def hardware(synth_dir: Path, c: int, d: int, capacity: dict) -> dict | None:
 
 def hardware_of(synth_dir: Path, name: str, capacity: dict) -> dict | None:
     """The same for any synthesised unit: out/synth/<name>/summary.json
-    (a width pair CxD, or a binary32 unit, e.g. float_dsp4)."""
+    (a width pair CxD, a binary32 unit, e.g. float_dsp4, or a local unit,
+    e.g. local_k8_d11_g32_c2)."""
     s = read_json(synth_dir / name / "summary.json")
     if s is None:
         return None
@@ -131,7 +132,9 @@ def hardware_of(synth_dir: Path, name: str, capacity: dict) -> dict | None:
     units = min(limits.values()) if limits else None
     limited_by = min(limits, key=limits.get) if limits else None
     fmax = {sp: f["median"] for sp, f in (s.get("fmax_mhz") or {}).items()}
-    per_unit = {sp: f * 1e6 for sp, f in fmax.items()}  # one box test per clock
+    # Box tests a unit answers per clock: one, or the local unit's CHILDREN.
+    per_clock = s.get("box_tests_per_clock") or 1
+    per_unit = {sp: f * 1e6 * per_clock for sp, f in fmax.items()}
     per_chip = {sp: v * units for sp, v in per_unit.items()} if units else {}
     return {
         "summary": rel(synth_dir / name / "summary.json"),
@@ -143,6 +146,7 @@ def hardware_of(synth_dir: Path, name: str, capacity: dict) -> dict | None:
         "latency": s.get("latency"),
         "fmax_mhz": s.get("fmax_mhz") or {},
         "units_per_chip": units, "units_limits": limits, "limited_by": limited_by,
+        "box_tests_per_clock": per_clock,
         "box_tests_per_s_per_unit": per_unit,
         "box_tests_per_s_per_chip": per_chip,
     }
