@@ -391,8 +391,7 @@ PYBIND11_MODULE(pluecker_py, m) {
 
     m.def("ray_class", &ray_class, py::arg("d"), "Ray class: bit a set when d[a] has its sign bit set");
     m.def("class_name", [](int c) {
-        if (c < 0 || c > 7) throw InputError("ray class " + std::to_string(c) + " is outside 0..7");
-        return class_name(static_cast<RayClass>(c));
+        return class_name(class_arg(c));
     }, py::arg("cls"));
 
     // --- query files and generators --------------------------------------
@@ -499,9 +498,8 @@ PYBIND11_MODULE(pluecker_py, m) {
     py::class_<FixedRay>(m, "FixedRay", "Quantised ray as the RTL receives it")
         .def(py::init([](int cls, const std::array<i64, 3>& org, const std::array<i64, 3>& dir,
                          const std::array<i64, 3>& end, bool has_end) {
-                 if (cls < 0 || cls > 7) throw InputError("ray class " + std::to_string(cls) + " is outside 0..7");
                  FixedRay r;
-                 r.cls = static_cast<RayClass>(cls);
+                 r.cls = class_arg(cls);
                  r.org = org;
                  r.dir = dir;
                  r.end = end;
@@ -512,8 +510,7 @@ PYBIND11_MODULE(pluecker_py, m) {
              py::arg("end") = std::array<i64, 3>{}, py::arg("has_end") = false)
         .def_property("cls", [](const FixedRay& r) { return static_cast<int>(r.cls); },
                       [](FixedRay& r, int c) {
-                          if (c < 0 || c > 7) throw InputError("ray class " + std::to_string(c) + " is outside 0..7");
-                          r.cls = static_cast<RayClass>(c);
+                          r.cls = class_arg(c);
                       })
         .def_readwrite("org", &FixedRay::org)
         .def_readwrite("dir", &FixedRay::dir)
@@ -773,9 +770,8 @@ PYBIND11_MODULE(pluecker_py, m) {
     py::class_<LocalRay>(m, "LocalRay", "A ray at the global width G, as local_setup_ray gives it")
         .def(py::init([](int cls, const std::array<i64, 3>& org, const std::array<i64, 3>& dir_g,
                          const std::array<i64, 3>& end, bool has_end) {
-                 if (cls < 0 || cls > 7) throw InputError("ray class " + std::to_string(cls) + " is outside 0..7");
                  LocalRay r;
-                 r.cls = static_cast<RayClass>(cls);
+                 r.cls = class_arg(cls);
                  r.org = org;
                  r.dir_g = dir_g;
                  r.end = end;
@@ -823,9 +819,8 @@ PYBIND11_MODULE(pluecker_py, m) {
     py::class_<LocalNodeRay>(m, "LocalNodeRay", "The ray in one node's frame: the child datapath's ray operands")
         .def(py::init([](int cls, const std::array<i64, 3>& dir, const std::array<i64, 6>& w,
                          const std::array<i64, 3>& org, const std::array<i64, 3>& end, bool has_end) {
-                 if (cls < 0 || cls > 7) throw InputError("ray class " + std::to_string(cls) + " is outside 0..7");
                  LocalNodeRay r;
-                 r.cls = static_cast<RayClass>(cls);
+                 r.cls = class_arg(cls);
                  r.dir = dir;
                  r.w = w;
                  r.org = org;
