@@ -376,31 +376,20 @@ class Tree:
 
     # -- harness --------------------------------------------------------------
     def build_sim(self, cfg: str) -> tuple[Path, subprocess.CompletedProcess | None]:
-        """The harness of cfg: CxD[n] (the global unit; n: nearest) or
-        localKxDxG (the local unit, one child, conservative)."""
         m = re.fullmatch(r"(\d+)x(\d+)(n?)", cfg)
-        ml = re.fullmatch(r"local(\d+)x(\d+)x(\d+)", cfg)
-        if not m and not ml:
-            raise Stop(f"bad harness configuration '{cfg}' (CxD, CxDn for nearest, localKxDxG)")
+        if not m:
+            raise Stop(f"bad harness configuration '{cfg}' (CxD, CxDn for nearest)")
         failed = self.build_model(["pluecker_app"])
         if failed:
             raise Stop(f"the copy's model libraries do not build:\n{failed.stderr[-3000:]}")
-        if ml:
-            out = self.dir / "build" / "sim" / f"local_k{ml[1]}_d{ml[2]}_g{ml[3]}_c1"
-            unit = dict(SIM_UNIT="local", BOX_BITS=ml[1], DIR_BITS=ml[2], GRID_BITS=ml[3], CHILDREN="1",
-                        MUL_STYLE="auto", MODE="conservative")
-            binary = "pluecker_sim_local"
-        else:
-            out = self.dir / "build" / "sim" / (f"{m[1]}x{m[2]}" + ("_nearest" if m[3] else ""))
-            unit = dict(COORD_BITS=m[1], DIR_BITS=m[2], MODE="nearest" if m[3] else "conservative")
-            binary = "pluecker_sim"
+        out = self.dir / "build" / "sim" / (f"{m[1]}x{m[2]}" + ("_nearest" if m[3] else ""))
         # No lint or style warnings (a mutant may leave a signal unused):
         # linting is `make lint`'s job. Not -Wno-fatal, which would let the
         # RTL's elaboration checks ($error, USERERROR) pass.
-        env = dict(self.env, **unit, MODEL_BUILD=str(self.model), SIM_OUT=str(out), SIM_JOBS=str(self.jobs),
-                   SIM_VFLAGS="-Wno-lint -Wno-style")
+        env = dict(self.env, COORD_BITS=m[1], DIR_BITS=m[2], MODE="nearest" if m[3] else "conservative",
+                   MODEL_BUILD=str(self.model), SIM_OUT=str(out), SIM_JOBS=str(self.jobs), SIM_VFLAGS="-Wno-lint -Wno-style")
         r = run(self.venv_cmd(self.dir / "sim" / "build.sh"), self.dir, env)
-        return out / binary, (None if r.returncode == 0 else r)
+        return out / "pluecker_sim", (None if r.returncode == 0 else r)
 
 
 @dataclass
