@@ -869,6 +869,10 @@ PYBIND11_MODULE(pluecker_py, m) {
           "The frame of a child node from its parent's frame and its box there (qchild)");
     m.def("local_quantize_box", &local_quantize_box, py::arg("box"), py::arg("frame"), py::arg("fmt"),
           "The box in the frame, rounded outward (conservative) or to nearest");
+    m.def("local_pair", [](int k) {
+        if (k < 0 || k > 5) throw InputError("edge pair " + std::to_string(k) + " is outside 0..5");
+        return std::pair<int, int>(local_pair_i(k), local_pair_j(k));
+    }, py::arg("k"), "The axes (i, j) of edge test k = 0..5: the order of W in the node ray (local.hpp)");
     m.def("local_node_ray", [](const LocalRay& r, const LocalFrame& fr, const LocalFormat& f) {
         check_local_ray(r, f);
         check_frame(fr, f);

@@ -184,3 +184,15 @@ def test_render_queries_are_the_traversal():
         pp.local_hit(pp.local_node_ray(ray, frame, fmt), box, fmt)  # every operand inside the contract
     with pytest.raises(pp.InputError, match="frames must be"):
         pp.local_render_queries("teapot", 8, fmt, frames="none")
+
+
+def test_local_pair_order():
+    """Edge test k's axes: every ordered pair of distinct axes once, tests
+    2m and 2m + 1 sharing axis i = m, anything outside 0..5 refused."""
+    pairs = [pp.local_pair(k) for k in range(6)]
+    assert sorted(pairs) == sorted((i, j) for i in range(3) for j in range(3) if i != j)
+    for k in range(0, 6, 2):
+        assert pairs[k][0] == pairs[k + 1][0] and pairs[k][1] != pairs[k + 1][1]
+    for k in (-1, 6):
+        with pytest.raises(pp.InputError, match="outside 0..5"):
+            pp.local_pair(k)

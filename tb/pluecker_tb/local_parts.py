@@ -196,7 +196,7 @@ def _boundary(rng: random.Random, fmt):
     ent = [(top - box.hi[a]) if (cls >> a) & 1 else box.lo[a] for a in range(3)]
     ext = [(top - box.lo[a]) if (cls >> a) & 1 else box.hi[a] for a in range(3)]
     k = rng.randrange(6)
-    i, j = k // 2, (k // 2 + 1 + k % 2) % 3
+    i, j = pp.local_pair(k)
     cons = fmt.mode == pp.FixedMode.Conservative
     t = rng.choice([-1, 0, 1])
     edge = 2 * (ext[j] * dirs[i] - ent[i] * dirs[j]) + ((ext[j] + ent[i]) if cons else 0)

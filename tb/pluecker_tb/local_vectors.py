@@ -296,7 +296,7 @@ def _edge_box(rng: random.Random, fmt: pp.LocalFormat, node, k: int) -> pp.Local
     2 (ext_j DIR_i - ent_i DIR_j) + ext_j + ent_i + W_k (conservative) in
     {-1, 0}, so that a W or margin off by one flips the answer. None when no
     plane pair in 0..2^K - 1 gets there."""
-    i, j = k // 2, (k // 2 + 1 + k % 2) % 3  # local.hpp's pair order
+    i, j = pp.local_pair(k)
     top = fmt.box_max()
     cons = fmt.mode == pp.FixedMode.Conservative
     d_i, d_j, w = node.dir[i], node.dir[j], node.w[k]
