@@ -132,19 +132,26 @@ TEST(Study, JsonHasEveryFigure) {
     EXPECT_TRUE(w["nearest"].contains("wrong_pixels"));
 }
 
+// A plan's choice: the last step measured, the first within the bound p,
+// its extra work over the plan's reference, and no false miss.
+template <class Result>
+void expect_first_within(const Result& r, double p) {
+    ASSERT_TRUE(r.chosen.has_value());
+    ASSERT_EQ(*r.chosen + 1, r.steps.size());
+    const auto& c = r.steps[*r.chosen];
+    EXPECT_LE(c.extra_box_tests_percent, p);
+    EXPECT_DOUBLE_EQ(c.extra_box_tests_percent,
+                     extra_percent(c.work.stats.traversal.box_tests, r.reference.stats.traversal.box_tests));
+    for (std::size_t k = 0; k + 1 < r.steps.size(); ++k) EXPECT_GT(r.steps[k].extra_box_tests_percent, p);
+    EXPECT_EQ(c.work.checked.false_misses, 0u);
+}
+
 TEST(Plan, PicksTheFirstWidthWithinTheBound) {
     const std::vector<WidthPair> widths = parse_widths("6:24");
     for (const double p : {0.0, 1.0, 10.0}) {
         SCOPED_TRACE(p);
         const PlanResult r = plan_widths(small().mesh, small().bvh, small().opts, widths, p);
-        ASSERT_TRUE(r.chosen.has_value());
-        ASSERT_EQ(*r.chosen + 1, r.steps.size());
-        const PlanStep& c = r.steps[*r.chosen];
-        EXPECT_LE(c.extra_box_tests_percent, p);
-        EXPECT_DOUBLE_EQ(c.extra_box_tests_percent, extra_percent(c.work.stats.traversal.box_tests,
-                                                                  r.reference.stats.traversal.box_tests));
-        for (std::size_t k = 0; k + 1 < r.steps.size(); ++k) EXPECT_GT(r.steps[k].extra_box_tests_percent, p);
-        EXPECT_EQ(c.work.checked.false_misses, 0u);
+        expect_first_within(r, p);
     }
 }
 
@@ -172,14 +179,7 @@ TEST(Plan, LocalPicksTheFirstBoxWidthWithinTheBound) {
     for (const double p : {1.0, 10.0}) {
         SCOPED_TRACE(p);
         const LocalPlanResult r = plan_local(small().mesh, small().bvh, small().opts, specs, p);
-        ASSERT_TRUE(r.chosen.has_value());
-        ASSERT_EQ(*r.chosen + 1, r.steps.size());
-        const LocalPlanStep& c = r.steps[*r.chosen];
-        EXPECT_LE(c.extra_box_tests_percent, p);
-        EXPECT_DOUBLE_EQ(c.extra_box_tests_percent, extra_percent(c.work.stats.traversal.box_tests,
-                                                                  r.reference.stats.traversal.box_tests));
-        for (std::size_t k = 0; k + 1 < r.steps.size(); ++k) EXPECT_GT(r.steps[k].extra_box_tests_percent, p);
-        EXPECT_EQ(c.work.checked.false_misses, 0u);
+        expect_first_within(r, p);
     }
     EXPECT_THROW(plan_local(small().mesh, small().bvh, small().opts, {}, 1.0), InputError);
     specs[1].format.grid_bits = 24;
