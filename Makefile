@@ -123,7 +123,7 @@ SIM_BIN       = $(SIM_DIR)/pluecker_sim
 SIM_VARS      = COORD_BITS=$(COORD_BITS) DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) \
                 MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS)
 
-.PHONY: sim sim-query sim-render sim-bench sim-boundary sim-float
+.PHONY: sim sim-query sim-render sim-bench sim-boundary sim-float sim-float-render
 
 sim: build
 	@$(SIM_VARS) $(ENV) sim/build.sh
@@ -153,10 +153,23 @@ FLOAT_UNIT ?= float
 FLOAT_MODE ?= nearest
 FLOAT_N    ?= 200000
 
+FLOAT_BUILD = SIM_UNIT=$(FLOAT_UNIT) MODE=$(FLOAT_MODE) SIM_MUL_DSP=$(MUL_DSP) MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) \
+	  SIM_TAG_BITS=$(SIM_TAG_BITS) $(ENV) sim/build.sh | tail -1
+FLOAT_TEST  = $(if $(filter smits,$(FLOAT_UNIT)),f32-smits,$(if $(filter conservative,$(FLOAT_MODE)),f32-pluecker-cons,f32-pluecker))
+
 sim-float: build
-	@bin=$$(SIM_UNIT=$(FLOAT_UNIT) MODE=$(FLOAT_MODE) SIM_MUL_DSP=$(MUL_DSP) MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) \
-	  SIM_TAG_BITS=$(SIM_TAG_BITS) $(ENV) sim/build.sh | tail -1) && echo "sim-float: $$bin" && \
+	@bin=$$($(FLOAT_BUILD)) && echo "sim-float: $$bin" && \
 	$$bin check --n $(FLOAT_N) --kind mixed --exact
+
+# make sim-float-render  hardware-in-the-loop render of SCENE at SIM_SIZE through that unit,
+#                        compared byte for byte with `pluecker render --test f32-...`
+sim-float-render: build
+	@bin=$$($(FLOAT_BUILD)) && d=$$(dirname $$bin) && \
+	$$bin render --scene $(SCENE) --size $(SIM_SIZE) --out $$d/render_rtl.png --stats $$d/render_rtl.json && \
+	$(BUILD)/pluecker render --test $(FLOAT_TEST) --scene $(SCENE) --size $(SIM_SIZE) --quiet \
+	  --out $$d/render_model.png --stats $$d/render_model.json && \
+	cmp $$d/render_rtl.png $$d/render_model.png && \
+	echo "sim-float-render: $(FLOAT_TEST) RTL render identical to the model's ($$d/render_rtl.png)"
 # ---- The local unit's harness (sim/local/) -----------------------------------
 # make sim-local         builds build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>]/pluecker_sim_local
 # make sim-local-query   LOCAL_QUERIES (default: 20000 generated, mixed and boundary) through the

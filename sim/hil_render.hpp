@@ -11,22 +11,47 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <initializer_list>
+#include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace pluecker::sim {
 
-// argv with `--option value` appended for every default whose option the
-// command line (`given`) leaves out.
-inline std::vector<std::string> with_defaults(std::vector<std::string> argv, const app::Args& given,
-                                              std::initializer_list<std::pair<const char*, std::string>> defaults) {
+// The command line of a harness's `render`: the options of `pluecker
+// render` plus --stats, --help (prints `usage`, returns nullopt) and
+// --quiet; no positional argument, --test only `test` (the one the RTL
+// answers), no --threads; `check(given)` checks the options that must
+// match the build (InputError), and `defaults` (the build's configuration)
+// fill in what the command line leaves out.
+template <class Check>
+std::optional<app::Args> render_args(const std::vector<std::string>& argv, const char* usage, const std::string& test,
+                                     Check check,
+                                     std::initializer_list<std::pair<const char*, std::string>> defaults) {
+    std::set<std::string> options = app::kSceneOptions;
+    options.insert("stats");
+    const std::set<std::string> switches = {"help", "quiet"};
+    const app::Args given(argv, options, switches);
+    if (given.has("help")) {
+        std::fputs(usage, stdout);
+        return std::nullopt;
+    }
+    if (!given.positional().empty()) throw InputError("unexpected argument '" + given.positional().front() + "'");
+    if (given.has("test") && given.get("test", "") != test)
+        throw InputError("option --test: this RTL answers the " + test + " test only ('" + given.get("test", "") +
+                         "' is not " + test + ")");
+    if (given.has("threads")) throw InputError("option --threads: the hardware-in-the-loop render runs on one thread");
+    check(given);
+    std::vector<std::string> full = argv;
+    if (!given.has("test")) full.insert(full.end(), {"--test", test});
     for (const auto& [option, value] : defaults)
-        if (!given.has(option)) argv.insert(argv.end(), {std::string("--") + option, value});
-    return argv;
+        if (!given.has(option)) full.insert(full.end(), {std::string("--") + option, value});
+    return app::Args(full, options, switches);
 }
 
 // The scene of a batched render (the order must be fixed or dsa).

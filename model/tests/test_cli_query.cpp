@@ -2,6 +2,7 @@
 // `pluecker query` end to end: the built CLI (PLUECKER_CLI) on the files in
 // tests/data/query and on generated files, compared with the library.
 #include "pluecker/boxtest.hpp"
+#include "pluecker/f32unit.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/query.hpp"
 #include "pluecker/querygen.hpp"
@@ -206,6 +207,10 @@ TEST(CliQuery, GeneratedFileMatchesLibrary) {
          [](const Query& q, const FixedFormat&) { return pluecker_hit(pluecker_setup(q.ray), q.box); }},
         {"--test fixed --coord-bits 12 --dir-bits 10",
          [](const Query& q, const FixedFormat& f) { return fixed_hit(q.ray, q.box, f); }},
+        {"--test f32-pluecker", [](const Query& q, const FixedFormat&) { return f32_pluecker_hit(q.ray, q.box, false); }},
+        {"--test f32-pluecker-cons",
+         [](const Query& q, const FixedFormat&) { return f32_pluecker_hit(q.ray, q.box, true); }},
+        {"--test f32-smits", [](const Query& q, const FixedFormat&) { return f32_smits_hit(q.ray, q.box); }},
     };
     for (const auto& t : tests) {
         std::string want;

@@ -7,6 +7,7 @@
 #include "pluecker/query.hpp"
 #include "pluecker/render.hpp"
 #include "pluecker/traverse.hpp"
+#include "pluecker/batched.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <span>
 #include <sstream>
 #include <string>
 
@@ -133,6 +135,50 @@ TEST(Render, EveryConfigurationGivesTheSameImage) {
     }
 }
 
+// The binary32 units' models through the batched path: the same image and
+// counts as the direct traversal of the same test, at any pool; the
+// conservative unit never misses a box, so its image is the float one.
+TEST(Render, F32UnitsBatchedMatchTheDirectPath) {
+    const Fixture fx("spheres");
+    RenderStats fst;
+    const Image flt = render(*fx.scene, small(BoxTestKind::Pluecker, ChildOrder::Dsa, 32), fst);
+    for (const BoxTestKind t : {BoxTestKind::F32Pluecker, BoxTestKind::F32PlueckerCons, BoxTestKind::F32Smits}) {
+        RenderOptions o = small(t, ChildOrder::Dsa, 32);
+        o.pool = 9;
+        RenderStats st, direct_st;
+        const Image batched = render(*fx.scene, o, st);
+        const Image direct = render_direct(*fx.scene, o, direct_st);
+        EXPECT_TRUE(batched == direct) << test_name(t);
+        EXPECT_EQ(st.traversal, direct_st.traversal) << test_name(t);
+        EXPECT_EQ(st.batch.queries, st.traversal.box_tests) << test_name(t);
+        EXPECT_GT(st.batch.batches, 0u) << test_name(t);
+        if (t == BoxTestKind::F32PlueckerCons) {
+            EXPECT_TRUE(batched == flt);
+        }
+    }
+}
+
+// A batched engine answers what it is asked: an engine that says "miss" to
+// every query renders the background only.
+TEST(Render, F32BatchedPathTakesTheEnginesAnswers) {
+    struct Blind final : F32BoxEngine<BoxTestKind::F32Smits> {
+        std::uint64_t asked = 0;
+        void test(std::span<const F32BoxQuery<BoxTestKind::F32Smits>> batch, std::span<std::uint8_t> hits) override {
+            asked += batch.size();
+            for (auto& h : hits) h = 0;
+        }
+    };
+    const Fixture fx("teapot");
+    const RenderOptions o = small(BoxTestKind::F32Smits, ChildOrder::Fixed, 16);
+    Blind blind;
+    RenderStats st;
+    const Image img = render_batched(*fx.scene, o, blind, st);
+    EXPECT_EQ(non_background(img, o), 0u);
+    EXPECT_EQ(blind.asked, 16u * 16u);  // the root box of every camera ray
+    EXPECT_THROW(render_batched(*fx.scene, small(BoxTestKind::F32Pluecker, ChildOrder::Fixed, 16), blind, st),
+                 InputError);
+}
+
 TEST(Render, BadOptionsAreInputErrors) {
     const Fixture fx("teapot");
     RenderStats st;
@@ -220,6 +266,27 @@ TEST(Cli, RenderWritesPngAndStats) {
     EXPECT_EQ(j["fixed"]["coord_bits"], 14);
     EXPECT_EQ(j["batch"]["pool"], 7);
     EXPECT_EQ(j["width"], 24);
+    std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, RenderThroughAFloatUnitModel) {
+    const auto dir = std::filesystem::temp_directory_path() / ("pluecker_render_f32_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string png = (dir / "img.png").string(), js = (dir / "stats.json").string();
+    ASSERT_EQ(run("render --scene teapot --test f32-pluecker-cons --size 16 --pool 5 --out " + png + " --stats " + js +
+                  " --quiet"),
+              0);
+    std::ifstream f(js);
+    const nlohmann::json j = nlohmann::json::parse(f);
+    EXPECT_EQ(j["f32"]["unit"], "f32-pluecker-cons");
+    EXPECT_EQ(j["batch"]["pool"], 5);
+    std::string err;
+    EXPECT_EQ(run("render --test f32-smits --mode nearest --size 8 --out /dev/null", &err), 2);
+    EXPECT_NE(err.find("--mode"), std::string::npos) << err;
+    EXPECT_EQ(run("render --test f32-smits --order dist --size 8 --out /dev/null", &err), 2);
+    EXPECT_NE(err.find("--order"), std::string::npos) << err;
+    EXPECT_EQ(run("render --test pluecker --pool 4 --size 8 --out /dev/null", &err), 2);
+    EXPECT_NE(err.find("--pool"), std::string::npos) << err;
     std::filesystem::remove_all(dir);
 }
 

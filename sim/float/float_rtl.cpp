@@ -50,22 +50,6 @@ std::string build_name() {
            std::to_string(c.mul_dsp);
 }
 
-UnitQuery setup_query(const Query& q) {
-#if SIM_FLOAT_UNIT == 0
-    return f32_pluecker_query(q.ray, q.box, SIM_CONSERVATIVE != 0);
-#else
-    return f32_smits_query(q.ray, q.box);
-#endif
-}
-
-bool model_hit(const UnitQuery& q) {
-#if SIM_FLOAT_UNIT == 0
-    return f32_pluecker_hit(q, SIM_CONSERVATIVE != 0);
-#else
-    return f32_smits_hit(q);
-#endif
-}
-
 PackedQuery pack(const UnitQuery& q) {
     const std::vector<FloatPortValue> v = pack_float_query(q);
     PackedQuery p;

@@ -16,11 +16,13 @@
 
 #include "pluecker/f32unit.hpp"
 #include "pluecker/float_contract.hpp"
+#include "pluecker/policies.hpp"
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #ifndef SIM_FLOAT_UNIT
 #error "SIM_FLOAT_UNIT must be defined (0 float, 1 smits; sim/build.sh passes it)"
@@ -37,16 +39,20 @@
 
 namespace pluecker::sim {
 
-// The unit's query type and model.
-using UnitQuery = std::conditional_t<SIM_FLOAT_UNIT == 0, F32PlueckerQuery, F32SmitsQuery>;
+// The box test the built unit answers (policies.hpp), its query type and
+// model.
+inline constexpr BoxTestKind kBuiltTest = SIM_FLOAT_UNIT != 0 ? BoxTestKind::F32Smits
+                                          : SIM_CONSERVATIVE != 0 ? BoxTestKind::F32PlueckerCons
+                                                                  : BoxTestKind::F32Pluecker;
+using UnitQuery = F32BoxQuery<kBuiltTest>::Unit;
 
 const FloatPortContract& built_contract();
 // "float nearest, MUL_DSP 4" for messages.
 std::string build_name();
 
 // The unit's set-up of a float query, and its answer (the golden model).
-UnitQuery setup_query(const Query& q);
-bool model_hit(const UnitQuery& q);
+inline UnitQuery setup_query(const Query& q) { return f32_unit_query<kBuiltTest>(q.ray, q.box); }
+inline bool model_hit(const UnitQuery& q) { return f32_unit_hit<kBuiltTest>(q); }
 
 // One query in the unit's port encoding.
 struct PackedQuery {
@@ -73,5 +79,8 @@ class FloatRtl : public RtlStream<Vfloat_unit, PackedQuery> {
 public:
     FloatRtl();
 };
+
+// `pluecker_sim render` (cmd_render.cpp).
+int cmd_render(const std::vector<std::string>& argv);
 
 }  // namespace pluecker::sim

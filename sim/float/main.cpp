@@ -9,6 +9,8 @@
 //                          against the model (and, with --exact, against
 //                          exact_hit: false misses and false hits)
 //   bench [--n N] [--ready P]   queries per second
+//   render [options of 'pluecker render']   hardware-in-the-loop render
+//                          (cmd_render.cpp)
 // Exit status: 0 ok, 1 mismatch or RTL protocol error, 2 bad input.
 #include "float_rtl.hpp"
 #include "harness_main.hpp"
@@ -45,7 +47,10 @@ constexpr const char* kUsage =
     "                          the whole port range (NaN, inf, subnormals, signed zeros);\n"
     "                          tiny: operands around 2^-126; --exact also counts false\n"
     "                          misses and false hits against exact_hit (random, extreme)\n"
-    "  bench [--n N] [--ready P]  queries per second (out_ready high, then with probability P)\n";
+    "  bench [--n N] [--ready P]  queries per second (out_ready high, then with probability P)\n"
+    "  render [options of 'pluecker render']   the scene rendered with every box query\n"
+    "                          answered by the RTL and checked against the model; the image\n"
+    "                          equals 'pluecker render --test <this unit>' ('render --help')\n";
 
 constexpr std::size_t kChunk = 65536;
 
@@ -256,5 +261,5 @@ int main(int argc, char** argv) {
     using namespace pluecker::sim;
     return harness_main(argc, argv, "pluecker_sim", kUsage,
                         build_name() + ", TAG_BITS " + std::to_string(SIM_TAG_BITS),
-                        {{"query", cmd_query}, {"check", cmd_check}, {"bench", cmd_bench}});
+                        {{"query", cmd_query}, {"check", cmd_check}, {"bench", cmd_bench}, {"render", cmd_render}});
 }

@@ -9,6 +9,7 @@
 #include "local_engine.hpp"
 
 #include <cstdio>
+#include <optional>
 
 namespace pluecker::sim {
 namespace {
@@ -29,31 +30,15 @@ constexpr const char* kUsage =
 }  // namespace
 
 int cmd_render(const std::vector<std::string>& argv) {
-    std::set<std::string> options = app::kSceneOptions;
-    options.insert("stats");
-    const std::set<std::string> switches = {"help", "quiet"};
-    const app::Args given(argv, options, switches);
-    if (given.has("help")) {
-        std::fputs(kUsage, stdout);
-        return 0;
-    }
-    if (!given.positional().empty()) throw InputError("unexpected argument '" + given.positional().front() + "'");
-    if (given.has("test") && given.get("test", "") != "local")
-        throw InputError("option --test: this RTL answers the local test only ('" + given.get("test", "") +
-                         "' is not local)");
-    if (given.has("threads")) throw InputError("option --threads: the hardware-in-the-loop render runs on one thread");
-    check_build_options(given);
-
     // The build's configuration fills in what the command line leaves out.
     const LocalFormat built = built_local_format();
-    const app::Args a(with_defaults(argv, given,
-                                    {{"test", "local"},
-                                     {"box-bits", std::to_string(built.box_bits)},
-                                     {"dir-bits", std::to_string(built.dir_bits)},
-                                     {"grid-bits", std::to_string(built.grid_bits)},
-                                     {"mode", mode_name(built.mode)}}),
-                      options, switches);
-    const auto s = batched_setup(a);
+    const std::optional<app::Args> a = render_args(argv, kUsage, "local", check_build_options,
+                                                   {{"box-bits", std::to_string(built.box_bits)},
+                                                  {"dir-bits", std::to_string(built.dir_bits)},
+                                                  {"grid-bits", std::to_string(built.grid_bits)},
+                                                  {"mode", mode_name(built.mode)}});
+    if (!a) return 0;
+    const auto s = batched_setup(*a);
 
     RtlLocal rtl;
     RtlLocalEngine engine(rtl);
@@ -62,7 +47,7 @@ int cmd_render(const std::vector<std::string>& argv) {
     auto qps = [&] {
         return engine.rtl_seconds() > 0 ? static_cast<double>(engine.box_tests()) / engine.rtl_seconds() : 0.0;
     };
-    const double seconds = render_through(*s, a, engine, st, [&](double wall) {
+    const double seconds = render_through(*s, *a, engine, st, [&](double wall) {
         return nlohmann::json{
             {"harness", "pluecker_sim_local"},
             {"children", kChildren},

@@ -6,7 +6,9 @@ the golden model (f32unit.hpp): `check` on generated queries (random and
 extreme, also against exact_hit: the nearest Plücker unit and the slab
 unit have no guarantee, so their false misses are printed, not required to
 be zero), on bit patterns over the whole port range and around 2^-126,
-with backpressure; `query --check` on a query file; bad input exits 2.
+with backpressure; `query --check` on a query file; a hardware-in-the-loop
+render of the teapot byte-identical to `pluecker render --test f32-pluecker`
+(or f32-smits), with the same counts; bad input exits 2.
 `make sim-regress` runs 10^7 queries through each unit and the conservative
 unit (zero false misses there).
 
@@ -14,6 +16,7 @@ Environment: PLUECKER_MODEL_BUILD or PLUECKER_PY_DIR (set by `make test-tb`)
 names the model's build directory (default build/model).
 """
 import fcntl
+import json
 import os
 import re
 import subprocess
@@ -24,6 +27,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 MODEL_BUILD = Path(os.environ.get("PLUECKER_MODEL_BUILD") or os.environ.get("PLUECKER_PY_DIR")
                    or ROOT / "build" / "model")
+CLI = MODEL_BUILD / "pluecker"
 CHECK_RE = re.compile(r"check \(([^)]*)\): (\d+) (\w+) queries, (\d+) hits, (\d+) mismatches")
 
 
@@ -79,6 +83,31 @@ def test_query_check_file(sim, tmp_path):
              else [pp.f32_smits_hit(pp.f32_smits_query(q)) for q in qs])
     assert answers == [int(h) for h in model]
     assert "0 mismatches" in r.stderr, r.stderr
+
+
+def test_render_identical_to_model(sim, tmp_path):
+    unit, binary = sim
+    test = {"float": "f32-pluecker", "smits": "f32-smits"}[unit]
+    common = ["--scene", "teapot", "--size", "32", "--order", "dsa", "--pool", "64", "--quiet"]
+    r = run([binary, "render", *common, "--out", tmp_path / "rtl.png", "--stats", tmp_path / "rtl.json"])
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert " 0 mismatches" in r.stdout, r.stdout
+    m = run([CLI, "render", "--test", test, *common, "--out", tmp_path / "model.png",
+             "--stats", tmp_path / "model.json"])
+    assert m.returncode == 0, m.stdout + m.stderr
+    c = run(["cmp", tmp_path / "rtl.png", tmp_path / "model.png"])
+    assert c.returncode == 0, "RTL render differs from the model's: " + c.stdout
+    rtl = json.loads((tmp_path / "rtl.json").read_text())
+    model = json.loads((tmp_path / "model.json").read_text())
+    assert rtl["test"] == model["test"] == test
+    for key in ("rays", "node_visits", "box_tests", "triangle_tests", "batch"):
+        assert rtl[key] == model[key], key
+    assert rtl["rtl"]["mismatches"] == 0
+    assert rtl["rtl"]["queries"] == model["box_tests"] > 5000
+    # The harness renders only its own unit's test.
+    other = {"float": "f32-smits", "smits": "f32-pluecker"}[unit]
+    r = run([binary, "render", "--test", other, "--size", "4", "--out", tmp_path / "x.png"])
+    assert r.returncode == 2 and "--test" in r.stderr, r.stderr
 
 
 def test_bad_input(sim, tmp_path):

@@ -7,6 +7,7 @@
 #include "pluecker/app/query_file.hpp"
 
 #include "pluecker/boxtest.hpp"
+#include "pluecker/f32unit.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/local.hpp"
 #include "pluecker/query.hpp"
@@ -21,7 +22,7 @@ namespace pluecker::cli {
 namespace {
 
 constexpr const char* kQueryUsage =
-    "usage: pluecker query --test exact|smits|pluecker|fixed|local\n"
+    "usage: pluecker query --test exact|smits|pluecker|fixed|local|f32-pluecker|f32-pluecker-cons|f32-smits\n"
     "                      [--coord-bits N] [--box-bits K] [--grid-bits G] [--dir-bits M]\n"
     "                      [--mode conservative|nearest] FILE\n"
     "Reads ray/box queries (13 numbers a line: ox oy oz dx dy dz tmax minx miny minz\n"
@@ -30,6 +31,9 @@ constexpr const char* kQueryUsage =
     "  --test exact      exact rational arithmetic on the float inputs (the truth)\n"
     "  --test smits      float slab test, inverse direction, per ray class\n"
     "  --test pluecker   float Plücker test (Mahovsky & Wyvill 2004), per ray class\n"
+    "  --test f32-pluecker, f32-pluecker-cons, f32-smits\n"
+    "                    the binary32 units' bit-exact models (f32unit.hpp: the\n"
+    "                    Plücker unit rounding to nearest or outward, the slab unit)\n"
     "  --test fixed      the bit-exact fixed-point datapath of the RTL behind the\n"
     "                    renderer's ray set-up: any finite origin (one outside the\n"
     "                    range cube [-2, 2 - 2^(2-N)]^3 is moved exactly onto it; a\n"
@@ -57,7 +61,9 @@ int cmd_query(const std::vector<std::string>& argv) {
         std::fputs(kQueryUsage, stdout);
         return 0;
     }
-    if (!args.has("test")) throw InputError("missing --test (exact, smits, pluecker, fixed or local)");
+    if (!args.has("test"))
+        throw InputError("missing --test (exact, smits, pluecker, fixed, local, f32-pluecker, f32-pluecker-cons or "
+                         "f32-smits)");
     BoxTestKind test;
     try {
         test = parse_box_test(args.get("test", ""));
@@ -125,6 +131,9 @@ int cmd_query(const std::vector<std::string>& argv) {
                     throw InputError(source + ":" + std::to_string(lines[i]) + ": " + e.what());
                 }
                 break;
+            case BoxTestKind::F32Pluecker: hit = f32_pluecker_hit(q.ray, q.box, false); break;
+            case BoxTestKind::F32PlueckerCons: hit = f32_pluecker_hit(q.ray, q.box, true); break;
+            case BoxTestKind::F32Smits: hit = f32_smits_hit(q.ray, q.box); break;
         }
         out += hit ? "1\n" : "0\n";
     }

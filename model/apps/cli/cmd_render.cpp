@@ -32,7 +32,7 @@ int cmd_render(const std::vector<std::string>& argv) {
             "  --stats FILE     statistics JSON (rays by kind, node visits, box and\n"
             "                   triangle tests, build and render ms, ...)\n"
             "  --threads T      worker threads (float tests)                     [1]\n"
-            "  --pool P         rays in flight (fixed test)                      [256]\n"
+            "  --pool P         rays in flight (batched tests: fixed, local, f32-*) [256]\n"
             "  --quiet          no progress on stderr\n");
         return 0;
     }

@@ -26,6 +26,8 @@ void check_prepared(const Accel& a, const FixedPolicy*) {
 void check_prepared(const Accel& a, const LocalPolicy*) {
     if (!a.local) throw std::logic_error("RayTraversal: the Accel is not localised");
 }
+template <BoxTestKind T>
+void check_prepared(const Accel&, const F32Policy<T>*) {}  // the float BVH is always there
 
 }  // namespace
 
@@ -227,6 +229,9 @@ std::vector<Hit> trace_batched_t(const Accel& a, ChildOrder o, Engine& engine, s
 
 template class RayTraversalT<FixedPolicy>;
 template class RayTraversalT<LocalPolicy>;
+template class RayTraversalT<F32Policy<BoxTestKind::F32Pluecker>>;
+template class RayTraversalT<F32Policy<BoxTestKind::F32PlueckerCons>>;
+template class RayTraversalT<F32Policy<BoxTestKind::F32Smits>>;
 
 void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool, const NextRay& next,
                  const FinishRay& finish, TraversalStats& st, BatchStats* bs) {
@@ -245,5 +250,26 @@ std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, LocalBoxEngine& eng
                                std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
     return trace_batched_t(a, o, engine, pool, rays, any_hit, st);
 }
+
+template <BoxTestKind T>
+void run_batched(const Accel& a, ChildOrder o, F32BoxEngine<T>& engine, std::size_t pool, const NextRay& next,
+                 const FinishRay& finish, TraversalStats& st, BatchStats* bs) {
+    run_batched_t<F32Policy<T>>(a, o, engine, pool, next, finish, st, bs);
+}
+template <BoxTestKind T>
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, F32BoxEngine<T>& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st) {
+    return trace_batched_t(a, o, engine, pool, rays, any_hit, st);
+}
+
+#define PLUECKER_F32_BATCHED(T)                                                                                \
+    template void run_batched<T>(const Accel&, ChildOrder, F32BoxEngine<T>&, std::size_t, const NextRay&,     \
+                                 const FinishRay&, TraversalStats&, BatchStats*);                              \
+    template std::vector<Hit> trace_batched<T>(const Accel&, ChildOrder, F32BoxEngine<T>&, std::size_t,        \
+                                               std::span<const Ray>, bool, TraversalStats&);
+PLUECKER_F32_BATCHED(BoxTestKind::F32Pluecker)
+PLUECKER_F32_BATCHED(BoxTestKind::F32PlueckerCons)
+PLUECKER_F32_BATCHED(BoxTestKind::F32Smits)
+#undef PLUECKER_F32_BATCHED
 
 }  // namespace pluecker

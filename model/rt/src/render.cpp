@@ -364,11 +364,23 @@ std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, co
 // ---------------------------------------------------------------------------
 // Render paths
 
+namespace {
+// A binary32 unit's model through the batched path (as its RTL renders).
+template <BoxTestKind T>
+Image render_f32(const RenderScene& scene, const RenderOptions& opts, RenderStats& st) {
+    SoftwareF32Engine<T> engine;
+    return render_batched(scene, opts, engine, st);
+}
+}  // namespace
+
 Image render(const RenderScene& scene, const RenderOptions& opts, RenderStats& st) {
     if (opts.test == BoxTestKind::Local) {
         SoftwareLocalEngine engine(opts.local);
         return render_batched(scene, opts, engine, st);
     }
+    if (opts.test == BoxTestKind::F32Pluecker) return render_f32<BoxTestKind::F32Pluecker>(scene, opts, st);
+    if (opts.test == BoxTestKind::F32PlueckerCons) return render_f32<BoxTestKind::F32PlueckerCons>(scene, opts, st);
+    if (opts.test == BoxTestKind::F32Smits) return render_f32<BoxTestKind::F32Smits>(scene, opts, st);
     if (opts.test != BoxTestKind::Fixed) return render_direct(scene, opts, st);
     SoftwareBoxEngine engine(opts.fixed);
     return render_batched(scene, opts, engine, st);
@@ -495,6 +507,16 @@ Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEng
 Image render_batched(const RenderScene& scene, const RenderOptions& opts, LocalBoxEngine& engine, RenderStats& st) {
     return render_batched_t(scene, opts, engine, st, BoxTestKind::Local);
 }
+template <BoxTestKind T>
+Image render_batched(const RenderScene& scene, const RenderOptions& opts, F32BoxEngine<T>& engine, RenderStats& st) {
+    return render_batched_t(scene, opts, engine, st, T);
+}
+template Image render_batched<BoxTestKind::F32Pluecker>(const RenderScene&, const RenderOptions&,
+                                                        F32BoxEngine<BoxTestKind::F32Pluecker>&, RenderStats&);
+template Image render_batched<BoxTestKind::F32PlueckerCons>(const RenderScene&, const RenderOptions&,
+                                                            F32BoxEngine<BoxTestKind::F32PlueckerCons>&, RenderStats&);
+template Image render_batched<BoxTestKind::F32Smits>(const RenderScene&, const RenderOptions&,
+                                                     F32BoxEngine<BoxTestKind::F32Smits>&, RenderStats&);
 
 std::uint64_t trace_render(const RenderScene& scene, const RenderOptions& opts, std::ostream& out, std::uint64_t limit,
                            RenderStats& st) {
@@ -565,7 +587,9 @@ nlohmann::json stats_json(const RenderScene& scene, const Bvh& bvh, BuildMethod 
     j["render_ms"] = st.render_ms;
     j["bvh"] = {{"nodes", bvh.nodes.size()}, {"leaves", bvh.leaf_count()}, {"depth", bvh.depth()}};
     if (is_batched(opts.test)) {
-        if (opts.test == BoxTestKind::Fixed)
+        if (is_f32_unit(opts.test))
+            j["f32"] = {{"unit", test_name(opts.test)}};
+        else if (opts.test == BoxTestKind::Fixed)
             j["fixed"] = {{"coord_bits", opts.fixed.coord_bits},
                           {"dir_bits", opts.fixed.dir_bits},
                           {"mode", mode_name(opts.fixed.mode)}};

@@ -25,6 +25,9 @@ const char* test_name(BoxTestKind t) {
         case BoxTestKind::Pluecker: return "pluecker";
         case BoxTestKind::Fixed: return "fixed";
         case BoxTestKind::Local: return "local";
+        case BoxTestKind::F32Pluecker: return "f32-pluecker";
+        case BoxTestKind::F32PlueckerCons: return "f32-pluecker-cons";
+        case BoxTestKind::F32Smits: return "f32-smits";
     }
     return "?";
 }
@@ -195,6 +198,10 @@ std::unique_ptr<Tracer> make_tracer(const Accel& a, BoxTestKind t, ChildOrder o,
             if (!a.quantized) throw std::logic_error("make_tracer: the fixed test needs Accel::quantize first");
             return make_ordered(a, FixedPolicy{a}, o, record);
         case BoxTestKind::Local: return make_ordered(a, LocalPolicy{a}, o, record);
+        case BoxTestKind::F32Pluecker: return make_ordered(a, F32Policy<BoxTestKind::F32Pluecker>{a}, o, record);
+        case BoxTestKind::F32PlueckerCons:
+            return make_ordered(a, F32Policy<BoxTestKind::F32PlueckerCons>{a}, o, record);
+        case BoxTestKind::F32Smits: return make_ordered(a, F32Policy<BoxTestKind::F32Smits>{a}, o, record);
     }
     throw std::logic_error("make_tracer: unreachable test");
 }

@@ -12,7 +12,11 @@ BoxTestKind parse_box_test(const std::string& s) {
     if (s == "pluecker") return BoxTestKind::Pluecker;
     if (s == "fixed") return BoxTestKind::Fixed;
     if (s == "local") return BoxTestKind::Local;
-    throw InputError("--test: '" + s + "' is not one of exact, smits, pluecker, fixed, local");
+    if (s == "f32-pluecker") return BoxTestKind::F32Pluecker;
+    if (s == "f32-pluecker-cons") return BoxTestKind::F32PlueckerCons;
+    if (s == "f32-smits") return BoxTestKind::F32Smits;
+    throw InputError("--test: '" + s +
+                     "' is not one of exact, smits, pluecker, fixed, local, f32-pluecker, f32-pluecker-cons, f32-smits");
 }
 
 ChildOrder parse_child_order(const std::string& s) {

@@ -25,6 +25,8 @@ const std::set<std::string> kSceneOptions = {
 const char* const kSceneHelp =
     "  --scene S        teapot | spheres | sphere:N | FILE (.obj/.ply)   [teapot]\n"
     "  --test T         exact | smits | pluecker | fixed | local         [pluecker]\n"
+    "                   | f32-pluecker | f32-pluecker-cons | f32-smits (the binary32\n"
+    "                   units' bit-exact models, f32unit.hpp, on the float BVH)\n"
     "  --order O        fixed | dsa | dist (dist: smits only)            [dsa]\n"
     "  --build B        median | sah                                     [sah]\n"
     "  --size N         image N x N                                      [512]\n"
@@ -148,8 +150,10 @@ std::unique_ptr<SceneSetup> make_setup(const Args& a) {
     const bool fixed = o.test == BoxTestKind::Fixed;
     const bool local = o.test == BoxTestKind::Local;
     if (a.has("coord-bits") && !fixed) throw InputError("option --coord-bits needs --test fixed");
-    for (const char* f : {"dir-bits", "mode", "pool"})
+    for (const char* f : {"dir-bits", "mode"})
         if (a.has(f) && !fixed && !local) throw InputError(std::string("option --") + f + " needs --test fixed or local");
+    if (a.has("pool") && !is_batched(o.test))
+        throw InputError("option --pool needs a batched test (fixed, local, f32-pluecker, f32-pluecker-cons, f32-smits)");
     for (const char* f : {"box-bits", "grid-bits", "frames", "cells"})
         if (a.has(f) && !local) throw InputError(std::string("option --") + f + " needs --test local");
     const FixedMode mode = with_flag("mode", [&] { return parse_fixed_mode(a.get("mode", "conservative")); });

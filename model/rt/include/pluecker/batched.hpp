@@ -39,6 +39,9 @@ public:
 };
 using BoxEngine = BoxEngineT<BoxQuery>;
 using LocalBoxEngine = BoxEngineT<LocalBoxQuery>;
+// T: BoxTestKind::F32Pluecker, F32PlueckerCons or F32Smits.
+template <BoxTestKind T>
+using F32BoxEngine = BoxEngineT<F32BoxQuery<T>>;
 
 // The software engines: fixed_hit / local_hit on every query.
 class SoftwareBoxEngine final : public BoxEngine {
@@ -56,6 +59,13 @@ public:
 
 private:
     LocalFormat format_;
+};
+template <BoxTestKind T>
+class SoftwareF32Engine final : public F32BoxEngine<T> {
+public:
+    void test(std::span<const F32BoxQuery<T>> batch, std::span<std::uint8_t> hits) override {
+        for (std::size_t i = 0; i < batch.size(); ++i) hits[i] = f32_unit_hit<T>(batch[i].unit) ? 1 : 0;
+    }
 };
 
 // One ray's resumable traversal with the box test of Policy (FixedPolicy:
@@ -126,18 +136,24 @@ struct BatchStats {
 // completes (in slot order). finish() may make new rays available to next().
 // The engine's query type picks the box test: BoxEngine the global
 // fixed-point datapath (Accel quantised), LocalBoxEngine the local frames
-// (Accel localised).
+// (Accel localised), F32BoxEngine<T> a binary32 unit (the float BVH).
 using NextRay = std::function<bool(BatchRay&)>;
 using FinishRay = std::function<void(const BatchResult&)>;
 void run_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool, const NextRay& next,
                  const FinishRay& finish, TraversalStats& st, BatchStats* bs = nullptr);
 void run_batched(const Accel& a, ChildOrder o, LocalBoxEngine& engine, std::size_t pool, const NextRay& next,
                  const FinishRay& finish, TraversalStats& st, BatchStats* bs = nullptr);
+template <BoxTestKind T>
+void run_batched(const Accel& a, ChildOrder o, F32BoxEngine<T>& engine, std::size_t pool, const NextRay& next,
+                 const FinishRay& finish, TraversalStats& st, BatchStats* bs = nullptr);
 
 // Convenience: traces a list of rays; result i belongs to rays[i].
 std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, BoxEngine& engine, std::size_t pool,
                                std::span<const Ray> rays, bool any_hit, TraversalStats& st);
 std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, LocalBoxEngine& engine, std::size_t pool,
+                               std::span<const Ray> rays, bool any_hit, TraversalStats& st);
+template <BoxTestKind T>
+std::vector<Hit> trace_batched(const Accel& a, ChildOrder o, F32BoxEngine<T>& engine, std::size_t pool,
                                std::span<const Ray> rays, bool any_hit, TraversalStats& st);
 
 }  // namespace pluecker

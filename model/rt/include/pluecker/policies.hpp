@@ -6,11 +6,14 @@
 #include "pluecker/accel.hpp"
 #include "pluecker/box_kernels.hpp"
 #include "pluecker/boxtest.hpp"
+#include "pluecker/f32unit.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/local.hpp"
 #include "pluecker/query.hpp"
+#include "pluecker/traversal.hpp"
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 namespace pluecker {
@@ -173,6 +176,59 @@ struct LocalPolicy {
     LocalBoxQuery batch_query(const State& st, std::uint32_t node) const {
         return LocalBoxQuery{Query{st.ray, accel->nodes[node].box}, st.lr,   accel->local->test_frame(node),
                              node_ray(st, node),                      accel->local->boxes[node], node};
+    }
+};
+
+// One query of a binary32 unit (f32unit.hpp) as its RTL takes it: the
+// unit's set-up of the ray as given (tmax as the test sees it) and the
+// node's float box, plus the float form.
+template <BoxTestKind T>
+struct F32BoxQuery {
+    static_assert(T == BoxTestKind::F32Pluecker || T == BoxTestKind::F32PlueckerCons || T == BoxTestKind::F32Smits);
+    using Unit = std::conditional_t<T == BoxTestKind::F32Smits, F32SmitsQuery, F32PlueckerQuery>;
+    Query query;
+    Unit unit;
+    std::uint32_t node;
+};
+
+// The unit's set-up of a float query, and its answer.
+template <BoxTestKind T>
+typename F32BoxQuery<T>::Unit f32_unit_query(const Ray& r, const Box& b) {
+    if constexpr (T == BoxTestKind::F32Smits)
+        return f32_smits_query(r, b);
+    else
+        return f32_pluecker_query(r, b, T == BoxTestKind::F32PlueckerCons);
+}
+template <BoxTestKind T>
+bool f32_unit_hit(const typename F32BoxQuery<T>::Unit& q) {
+    if constexpr (T == BoxTestKind::F32Smits)
+        return f32_smits_hit(q);
+    else
+        return f32_pluecker_hit(q, T == BoxTestKind::F32PlueckerCons);
+}
+
+// A binary32 unit on the float BVH: the ray as given, every box query set
+// up for the unit (f32_unit_query) and answered by its model.
+template <BoxTestKind T>
+struct F32Policy {
+    static constexpr bool kDistance = false;
+    using BatchQuery = F32BoxQuery<T>;
+    explicit F32Policy(const Accel& a) : accel(&a) {}
+    const Accel* accel;
+    struct State {
+        Ray ray;  // tmax shrunk to the best hit
+    };
+    State setup(const Ray& r) const { return {r}; }
+    bool live(const State&) const { return true; }
+    void shrink(State& st, float t) const { st.ray.tmax = t; }
+    template <RayClass>
+    bool hit(const State& st, std::uint32_t, const Box& b, float*) const {
+        return f32_unit_hit<T>(f32_unit_query<T>(st.ray, b));
+    }
+    Ray query_ray(const State& st) const { return st.ray; }
+    BatchQuery batch_query(const State& st, std::uint32_t node) const {
+        const Box& b = accel->nodes[node].box;
+        return BatchQuery{Query{st.ray, b}, f32_unit_query<T>(st.ray, b), node};
     }
 };
 

@@ -127,8 +127,8 @@ struct RenderSetup {
 std::unique_ptr<RenderSetup> make_render_setup(const std::string& scene_spec, const BuildOptions& build,
                                                const RenderOptions& opts);
 
-// Renders with opts.test: the fixed and local tests go through
-// render_batched with a software engine, the float tests through
+// Renders with opts.test: the fixed, local and binary32-unit tests go
+// through render_batched with a software engine, the float tests through
 // render_direct. The fixed test needs scene.accel quantised with opts.fixed,
 // the local test localised with opts.local (std::logic_error otherwise).
 Image render(const RenderScene& scene, const RenderOptions& opts, RenderStats& st);
@@ -144,13 +144,20 @@ Image render_direct(const RenderScene& scene, const RenderOptions& opts, const T
 
 // The hardware-in-the-loop path: rays of all pixels go through run_batched
 // with opts.pool rays in flight; every box test is answered by `engine`.
-// opts.test must be fixed (BoxEngine) or local (LocalBoxEngine), opts.order
-// fixed or dsa.
+// opts.test must be fixed (BoxEngine), local (LocalBoxEngine) or the
+// binary32 unit T (F32BoxEngine<T>), opts.order fixed or dsa.
 Image render_batched(const RenderScene& scene, const RenderOptions& opts, BoxEngine& engine, RenderStats& st);
 Image render_batched(const RenderScene& scene, const RenderOptions& opts, LocalBoxEngine& engine, RenderStats& st);
+template <BoxTestKind T>
+Image render_batched(const RenderScene& scene, const RenderOptions& opts, F32BoxEngine<T>& engine, RenderStats& st);
 
-// The batched tests: those with a datapath model (fixed, local).
-inline bool is_batched(BoxTestKind t) { return t == BoxTestKind::Fixed || t == BoxTestKind::Local; }
+// The binary32 units' models (f32-pluecker, f32-pluecker-cons, f32-smits).
+inline bool is_f32_unit(BoxTestKind t) {
+    return t == BoxTestKind::F32Pluecker || t == BoxTestKind::F32PlueckerCons || t == BoxTestKind::F32Smits;
+}
+// The batched tests: those with a datapath model (fixed, local, the binary32
+// units).
+inline bool is_batched(BoxTestKind t) { return t == BoxTestKind::Fixed || t == BoxTestKind::Local || is_f32_unit(t); }
 
 // Writes (write_query) the box queries of the render's traversal in the
 // order it issues them: single thread, pixels in row order, each pixel's

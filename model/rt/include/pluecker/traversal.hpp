@@ -57,7 +57,10 @@ namespace pluecker {
 // The choices of a traversal, and their names in output (the applications
 // parse them: pluecker/app/names.hpp)
 
-enum class BoxTestKind { Exact, Smits, Pluecker, Fixed, Local };
+// F32Pluecker, F32PlueckerCons, F32Smits: the binary32 units' bit-exact
+// models (f32unit.hpp: the Plücker unit rounding to nearest, the same unit
+// rounding outward, the slab unit).
+enum class BoxTestKind { Exact, Smits, Pluecker, Fixed, Local, F32Pluecker, F32PlueckerCons, F32Smits };
 enum class ChildOrder { Fixed, Dsa, Dist };
 
 const char* test_name(BoxTestKind t);
