@@ -211,6 +211,9 @@ sim-local-bench: sim-local
 # default the port contract's; CONSERVATIVE=1 for the conservative Plücker
 # unit): out/synth/<unit>[_cons]_dsp<M>/summary.json. UNIT=local (as a plan
 # file choosing the local unit sets it) runs synth-local instead.
+# Every Yosys run and every nextpnr run (configurations x speeds x seeds)
+# is a job (scripts/jobs.py): here, or on a Dask cluster with
+# DASK_SCHEDULER=host:port.
 SEEDS        ?= 3
 SPEEDS       ?= 6 8
 FREQ         ?= 250
@@ -287,7 +290,9 @@ hostile-table: build
 # ---- Width study, plan and report -------------------------------------------
 # make report   speed-for-accuracy report of every scene (teapot, spheres,
 #               ../shared/scenes/* when present) over REPORT_WIDTHS at
-#               REPORT_SIZE: out/report/report.html + report.json.
+#               REPORT_SIZE: out/report/report.html + report.json. The
+#               studies, harness builds and RTL checks are jobs
+#               (scripts/jobs.py; DASK_SCHEDULER=host:port: on a cluster).
 #               REPORT_SYNTH=1 runs `make synth` for widths not measured yet;
 #               REPORT_RTL_WIDTHS: widths of the RTL vs model check;
 #               REPORT_LOCAL: local-frame box widths K beside them (study
