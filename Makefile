@@ -379,10 +379,13 @@ peer: setup
 	  --synthetic $(TABLES_SYNTH) --shared ../shared/scenes --out $(OUT)/peer $(if $(PEER_SCENES),--scenes $(PEER_SCENES))
 
 # ---- Reliability: long regression and formal ----------------------------------
-# (scripts/regress.sh, fpga/formal/, tb/pluecker_intersector/test_stress.py,
+# (scripts/regress.py, fpga/formal/, tb/pluecker_intersector/test_stress.py,
 # model/tests/test_extremes.cpp, model/tests/test_margin_bound.cpp; the short
 # versions of all of them run in `make test`)
-# make sim-regress  the long versions: 1M extreme + 1M transformed queries
+# make sim-regress  the long versions, as independent jobs (scripts/jobs.py:
+#                   JOBS at a time here, or on the Dask cluster of
+#                   DASK_SCHEDULER=host:port; a progress line per
+#                   finished job): 1M extreme + 1M transformed queries
 #                   through `fixed` at every width pair of {6,9,..,24}^2 and the
 #                   margin's boundary suites (PLUECKER_LONG=1 model_tests),
 #                   REGRESS_N extreme, set-up, decision-boundary and
@@ -397,10 +400,12 @@ peer: setup
 #                   and REGRESS_FLOAT_N queries through each binary32 unit's
 #                   harness (extreme and random also against exact, raw bit
 #                   patterns, operands around 2^-126). Summary in
-#                   build/regress/summary.txt. About 20 min on 2 quiet
-#                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
-#                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
-#                   end-to-end check (13 min loaded, builds included).
+#                   build/regress/summary.txt, every finished job's
+#                   result in build/regress/jobs.jsonl. About 20 min on 2
+#                   quiet cores, 45 min on loaded ones (model 3 min, RTL 8
+#                   min with its builds, cocotb 7..35 min; timed before the
+#                   split into jobs); REGRESS_N=20000 is a quick end-to-end
+#                   check (13 min loaded, builds included).
 #                   The local unit: 2.5 REGRESS_LOCAL_N queries (extreme,
 #                   set-up, boundary, random) through its RTL at each of
 #                   REGRESS_LOCAL_CONFIGS (KxDxG, c CHILDREN, n nearest), 10^7
@@ -441,7 +446,7 @@ sim-regress: build
 	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
 	  REGRESS_FLOAT_N=$(REGRESS_FLOAT_N) \
 	  REGRESS_LOCAL_N=$(REGRESS_LOCAL_N) REGRESS_LOCAL_CONFIGS="$(REGRESS_LOCAL_CONFIGS)" \
-	  $(ENV) scripts/regress.sh
+	  $(ENV) python scripts/regress.py
 
 formal: setup
 	@$(ENV) fpga/formal/run.sh

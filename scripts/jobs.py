@@ -1,9 +1,10 @@
 # SPDX-License-Identifier: MIT
 """Runs a list of independent jobs, here or on a Dask distributed cluster.
 
-Used by scripts/synth.py (`make synth`) and scripts/report.py (`make
-report`). Each of them splits its work into jobs (a configuration's
-synthesis, one place-and-route run, a scene's study...) and hands them to
+Used by scripts/synth.py (`make synth`), scripts/regress.py (`make
+sim-regress`) and scripts/report.py (`make report`). Each of them splits its
+work into jobs (a configuration's synthesis, one place-and-route run, a
+scene's study, one width of the regression...) and hands them to
 run_jobs().
 
   DASK_SCHEDULER=host:port   the jobs go to the Dask distributed scheduler

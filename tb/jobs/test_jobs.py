@@ -1,9 +1,9 @@
 # SPDX-License-Identifier: MIT
-"""scripts/jobs.py, the job runner of `make synth` and `make report`, on a
-Dask cluster of a scheduler and two single-thread worker processes started
-as a deployment starts them (the `dask` command line, in a folder of their
-own, without the project on their Python path: a job that needs more than
-the shared project folder fails here):
+"""scripts/jobs.py, the job runner of `make synth`, `make sim-regress` and
+`make report`, on a Dask cluster of a scheduler and two single-thread worker
+processes started as a deployment starts them (the `dask` command line, in
+a folder of their own, without the project on their Python path: a job
+that needs more than the shared project folder fails here):
 
   - a small sweep (the tiny report's studies: two scenes at two widths,
     with the local-frame studies) gives the same figures on the cluster
