@@ -224,6 +224,9 @@ sim-local-bench: sim-local
 # default the port contract's; CONSERVATIVE=1 for the conservative Plücker
 # unit): out/synth/<unit>[_cons]_dsp<M>/summary.json. UNIT=local (as a plan
 # file choosing the local unit sets it) runs synth-local instead.
+# Every Yosys run and every nextpnr run (configurations x speeds x seeds)
+# is a job (scripts/jobs.py): here, or on a Dask cluster with
+# DASK_SCHEDULER=host:port.
 SEEDS        ?= 3
 SPEEDS       ?= 6 8
 FREQ         ?= 250
@@ -300,7 +303,9 @@ hostile-table: build
 # ---- Width study, plan and report -------------------------------------------
 # make report   speed-for-accuracy report of every scene (teapot, spheres,
 #               ../shared/scenes/* when present) over REPORT_WIDTHS at
-#               REPORT_SIZE: out/report/report.html + report.json.
+#               REPORT_SIZE: out/report/report.html + report.json. The
+#               studies, harness builds and RTL checks are jobs
+#               (scripts/jobs.py; DASK_SCHEDULER=host:port: on a cluster).
 #               REPORT_SYNTH=1 runs `make synth` for widths not measured yet;
 #               REPORT_RTL_WIDTHS: widths of the RTL vs model check;
 #               REPORT_LOCAL: local-frame box widths K beside them (study
@@ -387,10 +392,13 @@ peer: setup
 	  --synthetic $(TABLES_SYNTH) --shared ../shared/scenes --out $(OUT)/peer $(if $(PEER_SCENES),--scenes $(PEER_SCENES))
 
 # ---- Reliability: long regression and formal ----------------------------------
-# (scripts/regress.sh, fpga/formal/, tb/pluecker_intersector/test_stress.py,
+# (scripts/regress.py, fpga/formal/, tb/pluecker_intersector/test_stress.py,
 # model/tests/test_extremes.cpp, model/tests/test_margin_bound.cpp; the short
 # versions of all of them run in `make test`)
-# make sim-regress  the long versions: 1M extreme + 1M transformed queries
+# make sim-regress  the long versions, as independent jobs (scripts/jobs.py:
+#                   JOBS at a time here, or on the Dask cluster of
+#                   DASK_SCHEDULER=host:port; a progress line per
+#                   finished job): 1M extreme + 1M transformed queries
 #                   through `fixed` at every width pair of {6,9,..,24}^2 and the
 #                   margin's boundary suites (PLUECKER_LONG=1 model_tests),
 #                   REGRESS_N extreme, set-up, decision-boundary and
@@ -405,10 +413,12 @@ peer: setup
 #                   and REGRESS_FLOAT_N queries through each binary32 unit's
 #                   harness (extreme and random also against exact, raw bit
 #                   patterns, operands around 2^-126). Summary in
-#                   build/regress/summary.txt. About 20 min on 2 quiet
-#                   cores, 45 min on loaded ones (model 3 min, RTL 8 min with
-#                   its builds, cocotb 7..35 min); REGRESS_N=20000 is a quick
-#                   end-to-end check (13 min loaded, builds included).
+#                   build/regress/summary.txt, every finished job's
+#                   result in build/regress/jobs.jsonl. About 20 min on 2
+#                   quiet cores, 45 min on loaded ones (model 3 min, RTL 8
+#                   min with its builds, cocotb 7..35 min; timed before the
+#                   split into jobs); REGRESS_N=20000 is a quick end-to-end
+#                   check (13 min loaded, builds included).
 #                   The local unit: 2.5 REGRESS_LOCAL_N queries (extreme,
 #                   set-up, boundary, random) through its RTL at each of
 #                   REGRESS_LOCAL_CONFIGS (KxDxG, c CHILDREN, n nearest), 10^7
@@ -449,7 +459,7 @@ sim-regress: build
 	@MODEL_BUILD=$(BUILD) JOBS=$(JOBS) REGRESS_N=$(REGRESS_N) REGRESS_WIDTHS="$(REGRESS_WIDTHS)" \
 	  REGRESS_FLOAT_N=$(REGRESS_FLOAT_N) \
 	  REGRESS_LOCAL_N=$(REGRESS_LOCAL_N) REGRESS_LOCAL_CONFIGS="$(REGRESS_LOCAL_CONFIGS)" \
-	  $(ENV) scripts/regress.sh
+	  $(ENV) python scripts/regress.py
 
 formal: setup
 	@$(ENV) fpga/formal/run.sh

@@ -166,4 +166,7 @@ def main(argv) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except rl.CommandFailed as e:
+        sys.exit(f"main_report: {e}")

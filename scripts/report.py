@@ -15,6 +15,12 @@ units traverse without extra work): area, box tests per second per chip,
 their ratios, and effective rays per second per chip with each test's false
 misses on the study's queries.
 
+The studies (one a scene), the harness builds (one a width) and the RTL
+checks (one a scene and width) are jobs of scripts/jobs.py: on this machine,
+or on a Dask distributed cluster when DASK_SCHEDULER=host:port is set, with a
+progress line per finished job; a failed job ends the report naming it, and
+<out>/jobs_<phase>.jsonl keeps the finished jobs' results.
+
 Output: out/report/report.html (self-contained: tables and base64 PNG
 plots), out/report/report.json (every figure), out/report/plots/*.png.
 Definitions of the figures: model/rt/include/pluecker/study.hpp.
@@ -30,6 +36,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import jobs  # noqa: E402  (scripts/jobs.py: here or on a Dask cluster)
 import report_lib as rl  # noqa: E402
 from report_lib import ROOT, fmt, say, table  # noqa: E402
 
@@ -86,16 +93,35 @@ def short_name(spec: str) -> str:
 # Measurements
 
 def run_study(args, spec: str, outdir: Path) -> dict:
+    """Job: `pluecker study` of one scene; its JSON."""
     path = outdir / f"study_{re.sub(r'[^A-Za-z0-9_.-]', '_', short_name(spec))}.json"
     r = rl.run([args.cli, "study", "--scene", spec, "--size", args.size, "--widths", args.widths,
-                "--order", args.order, "--build", args.build, "--threads", args.jobs, "--json", path]
-               + (["--local", args.local] if args.local else []))
-    sys.stdout.write(r.stdout)
+                "--order", args.order, "--build", args.build, "--threads", args.jobs, "--quiet", "--json", path]
+               + (["--local", args.local] if args.local else []), echo=False)
     with open(path) as f:
         j = json.load(f)
     j["study_file"] = rl.rel(path)
     j["study_seconds_wall"] = round(r.seconds, 1)
+    j["spec"] = spec
     return j
+
+
+def study_line(j: dict) -> str:
+    w = j["widths"][0]
+    return (f"{j['triangles']:,} triangles, {j['queries']['count']:,} box queries; "
+            f"{rl.pair_name(w['coord_bits'], w['dir_bits'])}: {w['work']['extra_percent']['box_tests']:.3g} % "
+            "extra box tests")
+
+
+def run_jobs(job_list: list, args, label: str, local_workers: int, summary) -> dict:
+    """The jobs through scripts/jobs.py (here, or on the Dask cluster of
+    DASK_SCHEDULER); a failed job ends the report with its name, after the
+    finished jobs' results are written to <out>/jobs_<label>.jsonl."""
+    try:
+        return jobs.run_jobs(job_list, label=f"report {label}", local_workers=local_workers,
+                             journal=Path(args.out) / f"jobs_{label}.jsonl", summary=summary)
+    except jobs.JobsFailed as e:
+        raise SystemExit(f"report: {e}") from None
 
 
 def ensure_synth(args, widths, synth_dir: Path) -> None:
@@ -110,14 +136,14 @@ def ensure_synth(args, widths, synth_dir: Path) -> None:
 
 
 def sim_binary(args, w: int) -> tuple[Path | None, str]:
-    """Builds (or finds up to date) the harness for w x w conservative."""
+    """Job: builds (or finds up to date) the harness for w x w conservative."""
     out = Path(args.sim_root) / f"{w}x{w}"
     if not (ROOT / "rtl" / "pluecker_intersector.sv").exists():
         return None, "rtl/pluecker_intersector.sv missing"
     env = dict(os.environ, COORD_BITS=str(w), DIR_BITS=str(w), MODE="conservative",
                MODEL_BUILD=str(Path(args.cli).resolve().parent), SIM_OUT=str(out), SIM_JOBS=str(args.jobs))
-    say(f"report: Verilator harness {w}x{w} (built when missing or out of date)")
-    r = rl.run([ROOT / "scripts" / "venv-exec.sh", ROOT / "sim" / "build.sh"], env=env, check=False, capture=True)
+    r = rl.run([ROOT / "scripts" / "venv-exec.sh", ROOT / "sim" / "build.sh"], env=env, check=False, capture=True,
+               echo=False)
     if r.returncode != 0:
         return None, f"sim/build.sh failed: {(r.stderr or '').strip()[-400:]}"
     return out / "pluecker_sim", ""
@@ -127,19 +153,24 @@ CHECK_RE = re.compile(r"check \(([^)]*)\): (\d+) queries, (\d+) mismatches")
 
 
 def rtl_check(args, sim: Path, w: int, spec: str, tmpdir: Path) -> dict:
-    trace = tmpdir / f"trace_{w}.txt"
+    """Job: the RTL against the model on the queries of one traced render."""
+    trace = tmpdir / f"trace_{w}_{re.sub(r'[^A-Za-z0-9_.-]', '_', short_name(spec))}.txt"
     rl.run([args.cli, "trace", "--scene", spec, "--size", args.rtl_size, "--test", "fixed", "--coord-bits", w,
-            "--dir-bits", w, "--order", args.order, "--build", args.build, "--quiet", "--out", trace])
-    r = rl.run([sim, "query", "--check", "--coord-bits", w, "--dir-bits", w, trace], check=False, capture=True)
+            "--dir-bits", w, "--order", args.order, "--build", args.build, "--quiet", "--out", trace], echo=False)
+    r = rl.run([sim, "query", "--check", "--coord-bits", w, "--dir-bits", w, trace], check=False, capture=True,
+               echo=False)
     trace.unlink(missing_ok=True)
     m = CHECK_RE.search(r.stderr or "")
     res = {"coord_bits": w, "dir_bits": w, "size": args.rtl_size, "exit": r.returncode,
            "queries": int(m.group(2)) if m else None, "mismatches": int(m.group(3)) if m else None}
     if not m:
         res["error"] = (r.stderr or "").strip()[-400:]
-    say(f"report: RTL vs model {short_name(spec)} {w}x{w}: "
-        + (f"{res['queries']} queries, {res['mismatches']} mismatches" if m else f"FAILED: {res.get('error')}"))
     return res
+
+
+def rtl_line(res: dict) -> str:
+    return (f"{res['queries']} queries, {res['mismatches']} mismatches" if res.get("queries") is not None
+            else f"FAILED: {res.get('error')}")
 
 
 # --------------------------------------------------------------------------
@@ -682,15 +713,18 @@ def main(argv) -> int:
             prior = json.load(f)
         studies = prior["scenes"]
         scenes = prior["config"]["scenes"]
-    for i, spec in enumerate([] if prior else scenes):
-        name = short_name(spec)
+    present = []
+    for spec in [] if prior else scenes:
         if "/" in spec and not (ROOT / spec).exists() and not Path(spec).exists():
-            say(f"report: [{i + 1}/{len(scenes)}] {spec}: absent, skipped")
+            say(f"report: {spec}: absent, skipped")
             continue
-        say(f"report: [{i + 1}/{len(scenes)}] study of {name} ({args.size}x{args.size}, widths {args.widths})")
+        present.append(spec)
+    if present:
+        say(f"report: studies of {len(present)} scenes ({args.size}x{args.size}, widths {args.widths})")
         t = time.monotonic()
-        studies[name] = run_study(args, spec, outdir)
-        studies[name]["spec"] = spec
+        done = run_jobs([jobs.Job(short_name(spec), "report:run_study", (args, spec, outdir)) for spec in present],
+                        args, "studies", 1, study_line)
+        studies.update(done)
         timing["studies"] += time.monotonic() - t
     if not studies:
         raise SystemExit("report: no scene to study")
@@ -722,14 +756,23 @@ def main(argv) -> int:
     rtl: dict[str, list] = {}
     if prior:
         rtl = prior["rtl_vs_model"]
-    for w in [] if prior else [int(x) for x in args.rtl_widths.replace(",", " ").split()]:
-        sim, why = sim_binary(args, w)
-        for name, j in studies.items():
-            if sim is None:
-                rtl.setdefault(name, []).append({"coord_bits": w, "dir_bits": w, "size": args.rtl_size, "exit": -1,
-                                                 "queries": None, "mismatches": None, "error": why})
-                continue
-            rtl.setdefault(name, []).append(rtl_check(args, sim, w, j["spec"], tmpdir))
+    rtl_widths = [] if prior else [int(x) for x in args.rtl_widths.replace(",", " ").split()]
+    if rtl_widths:
+        say(f"report: Verilator harnesses {', '.join(f'{w}x{w}' for w in rtl_widths)} (built when missing or out "
+            "of date)")
+        sims = run_jobs([jobs.Job(f"harness {w}x{w}", "report:sim_binary", (args, w)) for w in rtl_widths],
+                        args, "harness", 1, lambda r: r[1] or str(r[0]))
+        checks = [(w, name) for w in rtl_widths for name in studies]
+        ok = [jobs.Job(f"rtl {name} {w}x{w}", "report:rtl_check",
+                       (args, sims[f"harness {w}x{w}"][0], w, studies[name]["spec"], tmpdir))
+              for w, name in checks if sims[f"harness {w}x{w}"][0] is not None]
+        done = run_jobs(ok, args, "rtl", args.jobs, rtl_line) if ok else {}
+        for w, name in checks:
+            sim, why = sims[f"harness {w}x{w}"]
+            rtl.setdefault(name, []).append(
+                done[f"rtl {name} {w}x{w}"] if sim is not None else
+                {"coord_bits": w, "dir_bits": w, "size": args.rtl_size, "exit": -1, "queries": None,
+                 "mismatches": None, "error": why})
     timing["rtl"] = time.monotonic() - t
 
     plots = plot_all(studies, hw, der, plotdir, args.synth_dir)
@@ -767,4 +810,7 @@ def main(argv) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    try:
+        sys.exit(main(sys.argv[1:]))
+    except rl.CommandFailed as e:
+        sys.exit(f"report: {e}")

@@ -30,6 +30,11 @@ def say(msg: str) -> None:
     print(msg, flush=True)
 
 
+class CommandFailed(RuntimeError):
+    """A command run by run() failed (an exception, not SystemExit, so that
+    a job of scripts/jobs.py that runs it fails by name)."""
+
+
 def run(cmd: list, *, check: bool = True, capture: bool = False, env=None, cwd=ROOT,
         echo: bool = True) -> subprocess.CompletedProcess:
     """Runs a command from the project root; stderr passes through (progress)
@@ -43,10 +48,8 @@ def run(cmd: list, *, check: bool = True, capture: bool = False, env=None, cwd=R
                        stderr=subprocess.PIPE if capture else None)
     r.seconds = time.monotonic() - t0
     if check and r.returncode != 0:
-        sys.stderr.write(r.stdout or "")
-        if capture:
-            sys.stderr.write(r.stderr or "")
-        raise SystemExit(f"report: command failed (exit {r.returncode}): {' '.join(cmd)}")
+        tail = "\n".join(((r.stdout or "") + (r.stderr or "")).strip().splitlines()[-10:])
+        raise CommandFailed(f"command failed (exit {r.returncode}): {' '.join(cmd)}" + (f"\n{tail}" if tail else ""))
     return r
 
 

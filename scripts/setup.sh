@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-APT_PACKAGES=(g++ make cmake pkg-config python3 python3-venv python3-dev
+APT_PACKAGES=(g++ make cmake pkg-config python3 python3-venv python3-dev liblz4-dev
               libglm-dev libgtest-dev libassimp-dev libstb-dev nlohmann-json3-dev libgmp-dev
               iverilog z3 ccache)
 if [ "${1:-}" = "--extra" ]; then shift; APT_PACKAGES+=("$@"); fi

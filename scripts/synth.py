@@ -11,10 +11,16 @@ Flow per width pair (COORD_BITS x DIR_BITS; one run for a binary32 unit):
      fpga/ooc_wrapper.sv (fpga/ooc_float_wrapper.sv for the binary32 units;
      registered ports), plus `stat -json`.
   2. nextpnr-ecp5 --85k --package CABGA381 --out-of-context --freq F
-     for every speed grade x seed (at most 2 runs at a time), each writing
-     its JSON report (--report).
+     for every speed grade x seed, each writing its JSON report (--report).
   3. The reports (never the logs) give utilisation, Fmax per clock and the
      critical path; out/synth/<C>x<D>/summary.json collects them.
+Every Yosys run (one a configuration) and every nextpnr run (one a
+configuration x speed grade x seed) is a job of scripts/jobs.py: on this
+machine at most --jobs (max 2) at a time, or on a Dask distributed cluster
+when DASK_SCHEDULER=host:port is set, with a progress line per finished job.
+A failed job is named and the exit status is 1; the summaries of the other
+configurations are still written, and <out>/jobs_yosys.jsonl and
+jobs_nextpnr.jsonl keep every finished job's result.
 LATENCY, the FIFO depth and the number of MULT18X18D come from the port
 contract (rtl/pluecker_contract.json, rtl/pluecker_contract_float.json
 through scripts/contract.py); the RTL checks at elaboration that it derives
@@ -42,7 +48,6 @@ computes it for the global unit) and box tests per second per chip
 from __future__ import annotations
 
 import argparse
-import concurrent.futures
 import json
 import os
 import re
@@ -58,6 +63,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 import contract  # noqa: E402  (scripts/contract.py: the port contract's table)
+import jobs  # noqa: E402  (scripts/jobs.py: here or on a Dask cluster)
 
 WRAPPER = ROOT / "fpga" / "ooc_wrapper.sv"
 TOP = "ooc_wrapper"
@@ -67,7 +73,7 @@ DUT = "pluecker_intersector"
 CAPACITY = {"MULT18X18D": 156, "TRELLIS_COMB": 83640, "TRELLIS_FF": 83640}
 DEVICE_FLAG, DEVICE = "--85k", "LFE5U-85F"
 PACKAGE = "CABGA381"
-MAX_PARALLEL = 2  # nextpnr runs at once (2-core machine)
+MAX_PARALLEL = 2  # Yosys or nextpnr runs at once on this machine (2 cores)
 CELL_KEYS = ("LUT4", "CCU2C", "TRELLIS_FF", "MULT18X18D", "PFUMX", "L6MUX21",
              "DP16KD", "TRELLIS_DPR16X4")
 
@@ -216,27 +222,30 @@ def design_sources(src: str) -> list[str]:
     return [e for e in src.split("|") if e and not e.startswith("/share/")]
 
 
-def netlist_info(netlist_path: Path, design: Design) -> tuple[dict[str, str], int]:
-    """(cell name -> type, number of flip-flops of the harness).
+def cell_types(netlist_path: Path, top: str) -> dict[str, str]:
+    """Cell name -> type in the top module of a Yosys JSON netlist."""
+    with open(netlist_path) as f:
+        return {name: cell["type"] for name, cell in json.load(f)["modules"][top]["cells"].items()}
+
+
+def harness_flip_flops(netlist_path: Path, design: Design) -> int:
+    """The number of flip-flops of the harness.
 
     A flip-flop belongs to the harness when its Yosys 'src' attribute points
     into the harness file only, or when it has no source and its name is not
     in the u_dut hierarchy (of the wrapper, or of one of its generate
     blocks)."""
     with open(netlist_path) as f:
-        nl = json.load(f)
-    top = nl["modules"][design.top]
-    types = {}
+        cells = json.load(f)["modules"][design.top]["cells"]
     harness_ff = 0
-    for name, cell in top["cells"].items():
-        types[name] = cell["type"]
+    for name, cell in cells.items():
         if cell["type"] == "TRELLIS_FF":
             srcs = design_sources(cell.get("attributes", {}).get("src", ""))
             if srcs and all(design.wrapper.name in s for s in srcs):
                 harness_ff += 1
             elif not srcs and not re.match(r"^(g_\w+\.)?u_dut\.", name):
                 harness_ff += 1  # e.g. output flops merged with a RAM read port
-    return types, harness_ff
+    return harness_ff
 
 
 def run_yosys(yosys: str, sources: list[Path], design: Design, outdir: Path) -> dict:
@@ -253,9 +262,8 @@ def run_yosys(yosys: str, sources: list[Path], design: Design, outdir: Path) -> 
         raise FlowError(f"yosys failed (exit {res.returncode}); see {log}\n{res.stderr.strip()}\n{tail}")
     with open(outdir / "yosys_stat.json") as f:
         cells = cells_by_type(json.load(f))
-    types, harness_ff = netlist_info(outdir / "netlist.json", design)
-    return {"seconds": round(seconds, 1), "cells": cells, "harness_ff": harness_ff,
-            "cell_types": types}
+    return {"seconds": round(seconds, 1), "cells": cells,
+            "harness_ff": harness_flip_flops(outdir / "netlist.json", design)}
 
 
 # --------------------------------------------------------------------------
@@ -370,6 +378,8 @@ def parse_report(report_path: Path, types: dict[str, str], base: Path) -> dict:
 
 
 def run_pnr(job: dict) -> dict:
+    """Job: one nextpnr run (job: speed, seed, rundir, base, netlist, top,
+    cmd); its Fmax, utilisation and critical path, or its error."""
     rundir: Path = job["rundir"]
     rundir.mkdir(parents=True, exist_ok=True)
     report = rundir / "report.json"
@@ -384,7 +394,7 @@ def run_pnr(job: dict) -> dict:
         out["error"] = (f"nextpnr exit {res.returncode}: "
                         + (res.stderr.strip().splitlines() or ["no output"])[-1])
         return out
-    out.update(parse_report(report, job["types"], job["base"]))
+    out.update(parse_report(report, cell_types(job["netlist"], job["top"]), job["base"]))
     clocks = out["fmax_mhz"]
     out["fmax"] = clocks.get("clk_i", next(iter(clocks.values()), None))
     return out
@@ -559,53 +569,87 @@ def local_design(k: int, d: int, g: int, args) -> Design:
                    "children": args.children}, tests_per_clock=args.children)
 
 
-def flow_one(design: Design, args, tools: dict, yosys: str, nextpnr: str | None,
-             sources: list[Path]) -> dict:
-    base = Path(args.out) / design.name
-    tag = f"[{design.name}]"
-    row = design.row
-    say(f"{tag} yosys synth_ecp5 ({', '.join(s.name for s in sources)}) ...")
-    ys = run_yosys(yosys, sources, design, base)
-    cells = ys["cells"]
-    say(f"{tag} yosys done in {ys['seconds']:.0f} s: LUT4 {cells.get('LUT4', 0)}, "
-        f"CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
-        f"(harness {ys['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}")
-    if cells.get("MULT18X18D", 0) != row["mult18x18d"]:
-        raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
-                        f"says {row['mult18x18d']}")
-    say(f"{tag} latency {row.get('latency')} cycles, FIFO depth {row.get('fifo_depth')}, "
-        f"{row['mult18x18d']} MULT18X18D (port contract)")
+def design_of(spec: tuple, args) -> Design:
+    """The Design of a configuration spec: ("fixed", C, D), ("float",) or
+    ("local", K, D, G) (plain data, so that a job carries it to a worker)."""
+    kind, *size = spec
+    if kind == "local":
+        return local_design(*size, args)
+    if kind == "float":
+        return float_design(args)
+    return global_design(*size, args)
 
-    runs: list[dict] = []
-    if not args.no_pnr:
-        jobs = []
-        for speed in args.speed_list:
-            for seed in range(1, args.seeds + 1):
-                rundir = base / "pnr" / f"speed{speed}_seed{seed}"
-                jobs.append({"speed": speed, "seed": seed, "rundir": rundir, "base": base,
-                             "types": ys["cell_types"],
-                             "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir,
-                                                speed, seed, args.freq, design.top)})
-        workers = max(1, min(args.jobs, MAX_PARALLEL, len(jobs)))
-        say(f"{tag} nextpnr: {len(jobs)} runs (speeds {args.speeds}, seeds 1..{args.seeds}, "
-            f"target {args.freq:g} MHz), {workers} at a time")
-        done = 0
-        with concurrent.futures.ThreadPoolExecutor(max_workers=workers) as pool:
-            futs = {pool.submit(run_pnr, j): j for j in jobs}
-            for fut in concurrent.futures.as_completed(futs):
-                r = fut.result()
-                done += 1
-                if "error" in r:
-                    say(f"{tag} [{done}/{len(jobs)}] speed {r['speed']} seed {r['seed']}: "
-                        f"FAILED ({r['error']}) after {r['seconds']:.0f} s")
-                else:
-                    say(f"{tag} [{done}/{len(jobs)}] speed {r['speed']} seed {r['seed']}: "
-                        f"{r['fmax']:.1f} MHz in {r['seconds']:.0f} s")
-                runs.append(r)
-        runs.sort(key=lambda r: (r["speed"], r["seed"]))
-    summary = write_summary(base, design, args, ys, runs, tools)
-    say(f"{tag} summary: {base / 'summary.json'}")
-    return summary
+
+def synth_one(spec: tuple, args, yosys: str, sources: list[Path]) -> dict:
+    """Job: Yosys for one configuration, its MULT18X18D count checked
+    against the port contract; the Yosys figures (ys) and the contract's row."""
+    design = design_of(spec, args)
+    ys = run_yosys(yosys, sources, design, Path(args.out) / design.name)
+    cells = ys["cells"]
+    if cells.get("MULT18X18D", 0) != design.row["mult18x18d"]:
+        raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
+                        f"says {design.row['mult18x18d']}")
+    return {"ys": ys, "row": design.row}
+
+
+def synth_line(r: dict) -> str:
+    cells, row = r["ys"]["cells"], r["row"]
+    return (f"LUT4 {cells.get('LUT4', 0)}, CCU2C {cells.get('CCU2C', 0)}, FF {cells.get('TRELLIS_FF', 0)} "
+            f"(harness {r['ys']['harness_ff']}), MULT18X18D {cells.get('MULT18X18D', 0)}; latency "
+            f"{row.get('latency')} cycles, FIFO depth {row.get('fifo_depth')}, {row['mult18x18d']} MULT18X18D "
+            "(port contract)")
+
+
+def pnr_line(r: dict) -> str:
+    return f"FAILED ({r['error']})" if "error" in r else f"{r['fmax']:.1f} MHz"
+
+
+def run_phase(label: str, job_list: list, args, summary) -> tuple[dict, list[str]]:
+    """One phase's jobs (scripts/jobs.py); a failed job is named in the
+    returned errors and the others' results are kept."""
+    try:
+        return jobs.run_jobs(job_list, label=label, local_workers=min(args.jobs, MAX_PARALLEL),
+                             journal=Path(args.out) / f"jobs_{label}.jsonl", summary=summary), []
+    except jobs.JobsFailed as e:
+        return e.results, [str(x) for x in e.errors]
+
+
+def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: str, nextpnr: str | None,
+         sources: list[Path]) -> tuple[list[dict], list[str]]:
+    """Yosys for every configuration, then nextpnr for every configuration x
+    speed grade x seed, as jobs; the summaries of every configuration whose
+    Yosys job finished, and the failed jobs."""
+    say(f"synth: Yosys synth_ecp5 of {', '.join(d.name for d in designs)} "
+        f"({', '.join(s.name for s in sources)})")
+    done, errors = run_phase("yosys", [jobs.Job(d.name, "synth:synth_one", (spec, args, yosys, sources))
+                                       for spec, d in zip(specs, designs)], args, synth_line)
+    built = [d for d in designs if d.name in done]
+    runs: dict[str, list] = {d.name: [] for d in built}
+    if not args.no_pnr and built:
+        say(f"synth: nextpnr at speeds {args.speeds}, seeds 1..{args.seeds}, target {args.freq:g} MHz")
+        pnr_jobs, of_design = [], {}
+        for d in built:
+            base = Path(args.out) / d.name
+            for speed in args.speed_list:
+                for seed in range(1, args.seeds + 1):
+                    rundir = base / "pnr" / f"speed{speed}_seed{seed}"
+                    job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
+                           "netlist": base / "netlist.json", "top": d.top,
+                           "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top)}
+                    name = f"{d.name} speed{speed} seed{seed}"
+                    pnr_jobs.append(jobs.Job(name, "synth:run_pnr", (job,)))
+                    of_design[name] = d.name
+        pnr, pnr_errors = run_phase("nextpnr", pnr_jobs, args, pnr_line)
+        errors += pnr_errors
+        for name, r in pnr.items():
+            runs[of_design[name]].append(r)
+    summaries = []
+    for d in built:
+        base = Path(args.out) / d.name
+        rs = sorted(runs[d.name], key=lambda r: (r["speed"], r["seed"]))
+        summaries.append(write_summary(base, d, args, done[d.name]["ys"], rs, tools))
+        say(f"[{d.name}] summary: {base / 'summary.json'}")
+    return summaries, errors
 
 
 def parse_args(argv: list[str]) -> argparse.Namespace:
@@ -628,7 +672,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--seeds", type=int, default=3, help="seeds 1..N per speed grade")
     p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
-    p.add_argument("--jobs", type=int, default=2, help=f"parallel nextpnr runs (max {MAX_PARALLEL})")
+    p.add_argument("--jobs", type=int, default=2,
+                   help=f"Yosys or nextpnr runs at a time on this machine (max {MAX_PARALLEL})")
     p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")
     p.add_argument("--smoke", action="store_true", help="one seed, speed 8 (quick check)")
     p.add_argument("--rtl", default=str(ROOT / "rtl"), help="RTL directory")
@@ -664,13 +709,14 @@ def main(argv: list[str]) -> int:
     args = parse_args(argv)
     try:
         if args.local:
-            designs = [local_design(k, d, g, args) for k, d, g in parse_local_widths(args.local_widths)]
+            specs = [("local", k, d, g) for k, d, g in parse_local_widths(args.local_widths)]
         elif args.unit != "fixed":
-            designs = [float_design(args)]
+            specs = [("float",)]
         else:
             pairs = parse_widths(args.widths) if args.widths else parse_widths(
                 f"{args.coord_bits}x{args.dir_bits}")
-            designs = [global_design(c, d, args) for c, d in pairs]
+            specs = [("fixed", c, d) for c, d in pairs]
+        designs = [design_of(spec, args) for spec in specs]
         sources = rtl_sources(Path(args.rtl), sorted({dsg.dut for dsg in designs}))
         yosys = yosys_tool()
         nextpnr = nextpnr_tool()
@@ -682,14 +728,17 @@ def main(argv: list[str]) -> int:
         if not args.no_pnr:
             tools["nextpnr"] = tool_version(nextpnr, "--version")
         t0 = time.monotonic()
-        summaries = [flow_one(dsg, args, tools, yosys, nextpnr, sources) for dsg in designs]
+        summaries, errors = flow(specs, designs, args, tools, yosys, nextpnr, sources)
     except FlowError as e:
         print(f"synth: error: {e}", file=sys.stderr)
         return 1
     print_table(summaries, [] if args.no_pnr else args.speed_list)
     print(f"\nsynth: {time.monotonic() - t0:.0f} s total")
-    failed = [r for s in summaries for r in s["runs"] if "error" in r]
-    return 1 if failed else 0
+    failed = [f"{s['config']} speed {r['speed']} seed {r['seed']}: {r['error']}"
+              for s in summaries for r in s["runs"] if "error" in r]
+    for e in errors + failed:
+        print(f"synth: error: {e}", file=sys.stderr)
+    return 1 if errors or failed else 0
 
 
 if __name__ == "__main__":

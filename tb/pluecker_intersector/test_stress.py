@@ -83,7 +83,7 @@ from pluecker_tb.intersector import TOPLEVEL, IntersectorBench, stimulus
 
 LONG = config.LONG
 # Queries per test: SCALE x the short sizes x the configuration's factor;
-# PLUECKER_STRESS_SCALE overrides SCALE (scripts/regress.sh derives it from
+# PLUECKER_STRESS_SCALE overrides SCALE (scripts/regress.py derives it from
 # REGRESS_N).
 SCALE = max(1, int(os.environ.get("PLUECKER_STRESS_SCALE", "") or config.SCALE))
 QUERIES = float(os.environ.get("PLUECKER_STRESS_QUERIES", "1"))

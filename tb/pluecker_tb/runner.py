@@ -15,6 +15,13 @@ object: ccache hands back what the compiler made for the same input.
 
 Missing pieces of the project are failures, never skips: the golden-model
 binding (need_model), Verilator, Icarus and Yosys (need_tool).
+
+Waveforms: WAVES=1 in the environment builds every Verilator DUT with FST
+tracing (in its own folder, <name>_waves, so that the traced and untraced
+builds do not rebuild each other) and has every test run write
+<build folder>/<test module>[_<run>].fst; a failing test's message names
+that file (and, without WAVES, says how to get one). Icarus runs (the stress
+bench's netlist check) are not traced.
 """
 
 from __future__ import annotations
@@ -35,6 +42,11 @@ NO_SPLIT_ARGS = ["--output-split", "0"]
 # Flags of every Verilator build of the RTL: its assertions live, and every
 # unreset flop and X assignment random (together with the plusargs below).
 VERILATOR_RTL_ARGS = ["--assert", "--x-assign", "unique", "--x-initial", "unique", *NO_SPLIT_ARGS]
+
+
+# WAVES=1: FST traces (cocotb's own runner reads the same variable).
+WAVES = os.environ.get("WAVES", "0") not in ("", "0")
+TRACE_ARGS = ["--trace-fst", "--trace-structs"]
 
 
 if "OBJCACHE" not in os.environ and shutil.which("ccache"):
@@ -85,11 +97,13 @@ def param_name(prefix: str, parameters: Mapping[str, object], short: Mapping[str
 class Build:
     """One DUT build in its own folder, and its test runs."""
 
-    def __init__(self, name: str, simulator: str = "verilator"):
+    def __init__(self, name: str, simulator: str = "verilator", waves: bool | None = None):
+        """waves: FST traces (default: WAVES from the environment)."""
         from cocotb_tools.runner import get_runner
 
-        self.name = name
-        self.dir = config.build_root() / name
+        self.waves = (WAVES if waves is None else waves) and simulator == "verilator"
+        self.name = name + ("_waves" if self.waves else "")
+        self.dir = config.build_root() / self.name
         self.dir.mkdir(parents=True, exist_ok=True)
         self.runner = get_runner(simulator)
 
@@ -98,9 +112,10 @@ class Build:
               includes: Sequence[Path] = (), **kw) -> Build:
         with open(self.dir / ".build.lock", "w") as lock:
             fcntl.flock(lock, fcntl.LOCK_EX)
+            args = list(build_args) + (TRACE_ARGS if self.waves else [])
             self.runner.build(sources=list(sources), hdl_toplevel=hdl_toplevel, parameters=dict(parameters or {}),
-                              defines=dict(defines or {}), build_args=list(build_args), includes=list(includes),
-                              build_dir=self.dir, **kw)
+                              defines=dict(defines or {}), build_args=args, includes=list(includes),
+                              build_dir=self.dir, waves=self.waves, **kw)
         self.hdl_toplevel = hdl_toplevel
         return self
 
@@ -108,18 +123,34 @@ class Build:
              plusargs: Sequence[str] = (), extra_env: Mapping[str, str] | None = None,
              results_name: str | None = None) -> int:
         """Runs the cocotb tests (all, or `testcase`) of test_module and
-        returns how many ran. The runner fails the pytest test when one of
-        them fails; this fails it when none ran (a filter that matched
-        nothing, a module without tests)."""
+        returns how many ran. Fails the pytest test, naming the results
+        file and the waveform (or how to get one), when one of them fails
+        or none ran (a filter that matched nothing, a module without
+        tests)."""
         import pytest
         from cocotb_tools.check_results import get_results
 
         env = {"PLUECKER_TB_WORK": str(self.dir), **(extra_env or {})}
         results = self.dir / f"results_{results_name or 'all'}.xml"
-        self.runner.test(hdl_toplevel=self.hdl_toplevel, test_module=test_module, testcase=testcase,
-                         build_dir=self.dir, test_dir=self.dir, plusargs=list(plusargs), extra_env=env,
-                         results_xml=str(results))
+        trace = self.trace_file(test_module, results_name)
+        test_args = ["--trace-file", str(trace)] if self.waves else []
+        try:
+            self.runner.test(hdl_toplevel=self.hdl_toplevel, test_module=test_module, testcase=testcase,
+                             build_dir=self.dir, test_dir=self.dir, plusargs=list(plusargs), extra_env=env,
+                             results_xml=str(results), waves=self.waves, test_args=test_args)
+        except SystemExit as e:  # the runner's way of failing a run under pytest
+            pytest.fail(f"{test_module} in {self.dir}: the simulation failed (exit {e.code}); "
+                        f"{self.waves_note(trace)}; results {results}")
         ran, failed = get_results(results)
         if ran == 0 or failed:
-            pytest.fail(f"{test_module} in {self.dir}: {ran} cocotb tests ran, {failed} failed ({results})")
+            pytest.fail(f"{test_module} in {self.dir}: {ran} cocotb tests ran, {failed} failed ({results}); "
+                        f"{self.waves_note(trace)}")
         return ran
+
+    def trace_file(self, test_module: str, results_name: str | None) -> Path:
+        return self.dir / f"{test_module}{f'_{results_name}' if results_name else ''}.fst"
+
+    def waves_note(self, trace: Path) -> str:
+        if self.waves:
+            return f"waveform {trace}" if trace.exists() else f"no waveform was written ({trace} is missing)"
+        return "rerun with WAVES=1 for an FST waveform"

@@ -31,7 +31,7 @@ def run_report(tmp_path, synth_dir, extra=()):
 
 def test_tiny_report(tmp_path):
     out, log = run_report(tmp_path, tmp_path / "no_synth")
-    assert "study of sphere:500" in log  # progress printed
+    assert "[report studies] [1/1] sphere:500: done in" in log  # progress printed
     html = (out / "report.html").read_text()
     assert html.startswith("<!DOCTYPE html>") and "data:image/png;base64," in html
     assert "not measured" in html

@@ -9,7 +9,7 @@ boundary families and lose no real hit against exact; the bench must agree
 with the model; bad input must exit 2.
 
 `make sim-regress` runs 10^7 queries over four configurations
-(scripts/regress.sh, part "local").
+(scripts/regress.py, part "local").
 
 Environment: PLUECKER_MODEL_BUILD or PLUECKER_PY_DIR (set by `make test-tb`)
 names the model's build directory (default build/model).
