@@ -133,7 +133,7 @@ def test_bad_input(sim16, tmp_path):
     expect2(["query", tmp_path / "missing.txt"], "cannot open")
     expect2(["query", "--mode", "nearest", tmp_path / "missing.txt"], "make sim")
     expect2(["query", "--coord-bits", "5", tmp_path / "missing.txt"], "6..24")
-    expect2(["render", "--size", "16", "--test", "smits"], "fixed-point test only")
+    expect2(["render", "--size", "16", "--test", "smits"], "this RTL answers the fixed test only")
     expect2(["frobnicate"], "unknown command")
     # A box past the range of the build: the same message and status as the CLI.
     bad = tmp_path / "bad.txt"
