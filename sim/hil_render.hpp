@@ -9,6 +9,8 @@
 
 #include "pluecker/render.hpp"
 
+#include "rtl_stream.hpp"
+
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -20,6 +22,10 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#ifndef SIM_TAG_BITS
+#error "SIM_TAG_BITS must be defined (sim/build.sh passes it)"
+#endif
 
 namespace pluecker::sim {
 
@@ -52,6 +58,26 @@ std::optional<app::Args> render_args(const std::vector<std::string>& argv, const
     for (const auto& [option, value] : defaults)
         if (!given.has(option)) full.insert(full.end(), {std::string("--") + option, value});
     return app::Args(full, options, switches);
+}
+
+// The "rtl" section of a render's statistics, the fields every harness
+// reports: `queries` box tests answered by the RTL in `batches` batches,
+// `rtl_seconds` of wall time in the RTL loop, `wall` of the whole render.
+inline nlohmann::json rtl_section(const char* harness, std::uint64_t queries, std::uint64_t batches,
+                                  std::uint64_t mismatches, double rtl_seconds, const StreamStats& rs, double wall) {
+    return nlohmann::json{
+        {"harness", harness},
+        {"tag_bits", SIM_TAG_BITS},
+        {"queries", queries},
+        {"batches", batches},
+        {"mismatches", mismatches},
+        {"cycles", rs.cycles},
+        {"stall_cycles", rs.stall_cycles},
+        {"max_in_flight", rs.max_in_flight},
+        {"rtl_seconds", rtl_seconds},
+        {"queries_per_second", rtl_seconds > 0 ? static_cast<double>(queries) / rtl_seconds : 0.0},
+        {"wall_seconds", wall},
+    };
 }
 
 // The scene of a batched render (the order must be fixed or dsa).

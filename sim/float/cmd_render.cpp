@@ -94,20 +94,10 @@ int cmd_render(const std::vector<std::string>& argv) {
         return engine.rtl_seconds() > 0 ? static_cast<double>(engine.queries()) / engine.rtl_seconds() : 0.0;
     };
     const double seconds = render_through(*s, *a, engine, st, [&](double wall) {
-        return nlohmann::json{
-            {"harness", "pluecker_sim"},
-            {"unit", build_name()},
-            {"tag_bits", SIM_TAG_BITS},
-            {"queries", engine.queries()},
-            {"batches", engine.batches()},
-            {"mismatches", engine.mismatches()},
-            {"cycles", rs.cycles},
-            {"stall_cycles", rs.stall_cycles},
-            {"max_in_flight", rs.max_in_flight},
-            {"rtl_seconds", engine.rtl_seconds()},
-            {"queries_per_second", qps()},
-            {"wall_seconds", wall},
-        };
+        nlohmann::json j = rtl_section("pluecker_sim", engine.queries(), engine.batches(), engine.mismatches(),
+                                       engine.rtl_seconds(), rs, wall);
+        j["unit"] = build_name();
+        return j;
     });
     std::printf("render %s %dx%d (%s, order %s, build %s): %llu box queries in %llu batches through the RTL, "
                 "%llu cycles, %.3f M queries/s in the RTL loop, %.2f s in all, %llu mismatches\n",

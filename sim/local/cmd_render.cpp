@@ -48,22 +48,12 @@ int cmd_render(const std::vector<std::string>& argv) {
         return engine.rtl_seconds() > 0 ? static_cast<double>(engine.box_tests()) / engine.rtl_seconds() : 0.0;
     };
     const double seconds = render_through(*s, *a, engine, st, [&](double wall) {
-        return nlohmann::json{
-            {"harness", "pluecker_sim_local"},
-            {"children", kChildren},
-            {"tag_bits", SIM_TAG_BITS},
-            {"queries", engine.box_tests()},
-            {"rtl_queries", engine.rtl_queries()},
-            {"paired_queries", engine.paired()},
-            {"batches", engine.batches()},
-            {"mismatches", engine.mismatches()},
-            {"cycles", rs.cycles},
-            {"stall_cycles", rs.stall_cycles},
-            {"max_in_flight", rs.max_in_flight},
-            {"rtl_seconds", engine.rtl_seconds()},
-            {"queries_per_second", qps()},
-            {"wall_seconds", wall},
-        };
+        nlohmann::json j = rtl_section("pluecker_sim_local", engine.box_tests(), engine.batches(),
+                                       engine.mismatches(), engine.rtl_seconds(), rs, wall);
+        j["children"] = kChildren;
+        j["rtl_queries"] = engine.rtl_queries();
+        j["paired_queries"] = engine.paired();
+        return j;
     });
     std::printf("render %s %dx%d (%s, order %s, build %s): %llu box queries in %llu RTL queries (%llu with two "
                 "children) in %llu batches, %llu cycles, %.3f M box queries/s in the RTL loop, %.2f s in all, %llu "
