@@ -149,7 +149,9 @@ def sim_binary(args, w: int) -> tuple[Path | None, str]:
     return out / "pluecker_sim", ""
 
 
-CHECK_RE = re.compile(r"check \(([^)]*)\): (\d+) queries, (\d+) mismatches")
+# The harness's `query --check` summary (stderr), e.g. "check (16x16
+# conservative): 67030 queries (67030 through the RTL, ...), 0 mismatches".
+CHECK_RE = re.compile(r"check \(([^)]*)\): (\d+) queries(?: \([^)]*\))?, (\d+) mismatches")
 
 
 def rtl_check(args, sim: Path, w: int, spec: str, tmpdir: Path) -> dict:

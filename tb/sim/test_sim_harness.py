@@ -88,6 +88,14 @@ def test_query_check_render_trace(sim16, tmp_path):
     assert m.returncode == 0, m.stderr
     assert r.stdout == m.stdout
     assert len(r.stdout.splitlines()) > 1000
+    # `make report` reads this summary line with its CHECK_RE.
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("report", ROOT / "scripts" / "report.py")
+    report = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(report)
+    parsed = report.CHECK_RE.search(r.stderr)
+    assert parsed, r.stderr
+    assert int(parsed.group(2)) == len(r.stdout.splitlines()) and int(parsed.group(3)) == 0
 
 
 def test_query_check_generated(sim16, tmp_path):
