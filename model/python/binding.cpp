@@ -8,6 +8,7 @@
 // tuples. Bad arguments raise pluecker_py.InputError, a ValueError.
 #include "pluecker/app/names.hpp"  // parse_fixed_mode
 #include "pluecker/boxtest.hpp"
+#include "pluecker/axis_contract.hpp"
 #include "pluecker/contract.hpp"
 #include "pluecker/f32unit.hpp"
 #include "pluecker/fixed.hpp"
@@ -605,6 +606,13 @@ PYBIND11_MODULE(pluecker_py, m) {
         .def("rtl_ports", [](const PortContract& c, const FixedRay& r, const FixedBox& b) {
             return rtl_ports(r, b, c.format());
         }, py::arg("ray"), py::arg("box"), "rtl_ports(ray, box, self.format)")
+        .def_property_readonly("axis_tdata_fields", [](const PortContract& c) {
+            py::list out;
+            for (const TdataField& f : axis_tdata_fields(c)) out.append(py::make_tuple(f.port, f.lsb, f.width));
+            return out;
+        }, "(port, lsb, width) of each input port in the AXI4-Stream wrapper's s_axis_tdata_i (axis_contract.hpp)")
+        .def_property_readonly("axis_query_bits", &axis_query_bits, "The bits of the tdata fields together")
+        .def_property_readonly("axis_tdata_bits", &axis_tdata_bits, "s_axis_tdata_i's width (whole bytes)")
         .def_readonly_static("MIN_BITS", &ContractLimits::kMinBits)
         .def_readonly_static("MAX_BITS", &ContractLimits::kMaxBits)
         .def_readonly_static("MIN_TAG_BITS", &ContractLimits::kMinTagBits)

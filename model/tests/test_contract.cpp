@@ -4,6 +4,7 @@
 // that the committed generated files (rtl/pluecker_contract_pkg.sv,
 // rtl/pluecker_contract.json) are what this build generates.
 #include "pluecker/app/names.hpp"  // parse_mul_style
+#include "pluecker/axis_contract.hpp"
 #include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/rng.hpp"
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -288,6 +290,47 @@ TEST(Contract, ClassesPartitionEveryConfiguration) {
     EXPECT_EQ(valid, std::size_t{2} * (19 * 19 * 2 + 12 * 12));
     // Widths split at 10 (auto's fabric threshold) and 18 (DSP operand split).
     EXPECT_EQ(classes.size(), std::size_t{2} * (9 + 9 + 4));
+}
+
+// The AXI4-Stream wrapper's tdata: the payload ports back to back from bit
+// 0, in port-list order, padded to whole bytes.
+TEST(Contract, AxisTdataFields) {
+    for (int c = ContractLimits::kMinBits; c <= ContractLimits::kMaxBits; ++c)
+        for (int d = ContractLimits::kMinBits; d <= ContractLimits::kMaxBits; ++d) {
+            SCOPED_TRACE(std::to_string(c) + "/" + std::to_string(d));
+            const PortContract pc = contract(c, d);
+            const auto f = axis_tdata_fields(pc);
+            const char* order[] = {"ray_class_i", "ray_org_i", "ray_dir_i", "ray_end_i",
+                                   "ray_end_valid_i", "box_min_i", "box_max_i"};
+            ASSERT_EQ(f.size(), std::size(order));
+            int lsb = 0;
+            for (std::size_t k = 0; k < f.size(); ++k) {
+                EXPECT_EQ(f[k].port, order[k]);
+                EXPECT_EQ(f[k].lsb, lsb);
+                EXPECT_EQ(f[k].width, pc.port(f[k].port).width());
+                lsb += f[k].width;
+            }
+            EXPECT_EQ(axis_query_bits(pc), 4 + 12 * c + 3 * d);
+            EXPECT_EQ(axis_tdata_bits(pc) % 8, 0);
+            EXPECT_GE(axis_tdata_bits(pc), axis_query_bits(pc));
+            EXPECT_LT(axis_tdata_bits(pc) - axis_query_bits(pc), 8);
+        }
+    // The terms behind the generated package's functions give the same table.
+    const auto terms = axis_tdata_terms();
+    for (int c = ContractLimits::kMinBits; c <= ContractLimits::kMaxBits; ++c)
+        for (int d = ContractLimits::kMinBits; d <= ContractLimits::kMaxBits; ++d) {
+            const auto f = axis_tdata_fields(contract(c, d));
+            ASSERT_EQ(terms.size(), f.size());
+            for (std::size_t k = 0; k < f.size(); ++k) {
+                EXPECT_EQ(terms[k].port, f[k].port);
+                EXPECT_EQ(terms[k].lsb.at(c, d), f[k].lsb) << c << "/" << d << " " << f[k].port;
+                EXPECT_EQ(terms[k].width.at(c, d), f[k].width) << c << "/" << d << " " << f[k].port;
+            }
+        }
+    EXPECT_NE(contract_sv_package().find("      2: axis_field_lsb = 3 + 3 * c;  // ray_dir_i"), std::string::npos);
+    EXPECT_EQ(axis_tdata_bits(contract(16, 16)), 248);  // 244 bits of fields
+    EXPECT_EQ(axis_tdata_bits(contract(6, 6)), 96);     // 94
+    EXPECT_EQ(axis_tdata_bits(contract(24, 24)), 368);  // 364
 }
 
 std::string read_file(const std::string& path) {

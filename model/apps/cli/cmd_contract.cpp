@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "pluecker/app/names.hpp"
 
+#include "pluecker/axis_contract.hpp"
 #include "pluecker/contract.hpp"
 #include "pluecker/fixed.hpp"
 #include "pluecker/float_contract.hpp"
@@ -137,6 +138,10 @@ void print_contract(const PortContract& pc) {
     std::printf("  LATENCY       %d\n", pc.latency());
     std::printf("  FIFO_DEPTH    %d\n", pc.fifo_depth());
     print_ports(pc.ports());
+    std::printf("  AXI4-Stream wrapper (pluecker_axis): s_axis_tdata_i %d bits (%d of fields)\n", axis_tdata_bits(pc),
+                axis_query_bits(pc));
+    for (const TdataField& f : axis_tdata_fields(pc))
+        std::printf("    tdata[%d:%d] %s\n", f.lsb + f.width - 1, f.lsb, f.port.c_str());
 }
 
 const char* multipliers_name(bool fabric) { return fabric ? "fabric (pluecker_mul_lut)" : "DSP (pluecker_mul)"; }

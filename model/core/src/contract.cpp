@@ -3,6 +3,8 @@
 // derived constants, the port encoding of a query and the generated files.
 #include "pluecker/contract.hpp"
 
+#include "pluecker/axis_contract.hpp"
+
 #include "contract_util.hpp"
 #include "grid.hpp"
 
@@ -272,6 +274,7 @@ std::string contract_sv_package() {
     table("contract_mul_add", "int", "MUL_ADD", [](const ContractClass& c) { return c.mul_add; });
     table("contract_latency", "int", "LATENCY", [](const ContractClass& c) { return c.latency; });
     table("contract_fifo_depth", "int", "FIFO_DEPTH", [](const ContractClass& c) { return c.fifo_depth; });
+    s << axis_sv_functions();
     s << "endpackage\n";
     return s.str();
 }
