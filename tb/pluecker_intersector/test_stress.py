@@ -413,14 +413,14 @@ def test_stress_x_icarus(c: int, d: int, cons: int, queries: float) -> None:
     import shutil
 
     from pluecker_tb import ecp5
-    from pluecker_tb.runner import Build, need_model, need_tool
+    from pluecker_tb.runner import Build, need_model, need_tool, rtl_files
 
     need_model()
     need_tool("iverilog", "the 4-state X check runs under Icarus")
     build = Build(_name(c, d, cons) + "_icarus", simulator="icarus")
     # YoWASP Yosys runs sandboxed: copy the sources next to the netlist
     # and use relative paths.
-    srcs = sorted(config.RTL_DIR.glob("*.sv"))
+    srcs = rtl_files()
     for src in srcs:
         shutil.copy(src, build.dir / src.name)
     chparams = " ".join(f"-set {k} {v}" for k, v in _params(c, d, cons).items())

@@ -53,12 +53,20 @@ if "OBJCACHE" not in os.environ and shutil.which("ccache"):
     os.environ["OBJCACHE"] = "ccache"
 
 
+def rtl_files(rtl_dir: Path | None = None) -> list[Path]:
+    """Every rtl/*.sv, the packages first: Yosys resolves a package
+    reference only in a module read after the package (pluecker_axis.sv
+    sorts before pluecker_contract_pkg.sv)."""
+    d = rtl_dir or config.RTL_DIR
+    return sorted(d.glob("*.sv"), key=lambda f: (not f.stem.endswith("_pkg"), f.name))
+
+
 def rtl_sources(rtl_dir: Path | None = None) -> list:
     """lint.vlt (as a Verilator control file) and every rtl/*.sv."""
     from cocotb_tools.runner import VerilatorControlFile
 
     d = rtl_dir or config.RTL_DIR
-    return [VerilatorControlFile(d / "lint.vlt"), *sorted(d.glob("*.sv"))]
+    return [VerilatorControlFile(d / "lint.vlt"), *rtl_files(d)]
 
 
 def need_model() -> None:
