@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "hil_render.hpp"
 #include "rtl_engine.hpp"
+#include "rtl_intersector.hpp"
 
 #include <cstdio>
 #include <optional>
@@ -39,12 +40,11 @@ int cmd_render(const std::vector<std::string>& argv) {
     const auto s = batched_setup(*a);
 
     RtlIntersector rtl;
-    RtlBoxEngine engine(rtl);
+    RtlBoxEngine<BoxQuery, RtlIntersector, PackedQuery> engine(
+        rtl, [](const BoxQuery& q) { return pack_query(q.ray, q.box); },
+        [built](const BoxQuery& q) { return fixed_hit(q.ray, q.box, built); });
     RenderStats st;
     const StreamStats& rs = rtl.stats();
-    auto qps = [&] {
-        return engine.rtl_seconds() > 0 ? static_cast<double>(engine.queries()) / engine.rtl_seconds() : 0.0;
-    };
     const double seconds = render_through(*s, *a, engine, st, [&](double wall) {
         return rtl_section("pluecker_sim", engine.queries(), engine.batches(), engine.mismatches(),
                            engine.rtl_seconds(), rs, wall);
@@ -54,7 +54,7 @@ int cmd_render(const std::vector<std::string>& argv) {
                 s->mesh.name.c_str(), s->opts.width, s->opts.height, build_name().c_str(), order_name(s->opts.order),
                 method_name(s->build), static_cast<unsigned long long>(engine.queries()),
                 static_cast<unsigned long long>(engine.batches()), static_cast<unsigned long long>(rs.cycles),
-                qps() / 1e6, seconds, static_cast<unsigned long long>(engine.mismatches()));
+                engine.queries_per_second() / 1e6, seconds, static_cast<unsigned long long>(engine.mismatches()));
     return engine.mismatches() == 0 ? 0 : 1;
 }
 
