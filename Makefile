@@ -47,7 +47,8 @@ build: setup
 # (sim-render, in the harness section), operands on the datapath's decision
 # boundaries through the same RTL against the model (sim-boundary: a render
 # alone cannot see an off-by-one in the margin), the renders' byte-for-
-# byte comparison (fails loudly), and out/report/main.html.
+# byte comparison (fails loudly), and out/report/main.html, opened in
+# headless Chromium (browser-check) before it is announced.
 main: build
 	@mkdir -p $(OUT)/report
 	$(CLI) render --scene $(SCENE) --test fixed --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) --mode $(MODE) \
@@ -59,6 +60,7 @@ main: build
 	  --model-png $(MAIN_MODEL).png --model-json $(MAIN_MODEL).json --rtl-png $(MAIN_RTL).png \
 	  --rtl-json $(MAIN_RTL).json --out $(OUT)/report/main.html \
 	  --sweep-size $(MAIN_SWEEP_SIZE) --sweep-widths $(MAIN_SWEEP_WIDTHS)
+	@$(MAKE) --no-print-directory browser-check PAGES=$(OUT)/report/main.html
 	@if cmp $(MAIN_MODEL).png $(MAIN_RTL).png; then \
 	  echo "main: PASS: the RTL render is bit-identical to the golden model's ($(MAIN_RTL).png)"; \
 	  echo "main: report in $(OUT)/report/main.html"; \
@@ -334,6 +336,19 @@ report: build
 	$(ENV) python scripts/report.py --cli $(CLI) --size $(REPORT_SIZE) --widths $(REPORT_WIDTHS) \
 	  --scenes $(REPORT_SCENES) --synth $(REPORT_SYNTH) --rtl-widths "$(REPORT_RTL_WIDTHS)" \
 	  --rtl-size $(REPORT_RTL_SIZE) --local "$(REPORT_LOCAL)" --jobs $(JOBS) --out $(OUT)/report
+	@$(MAKE) --no-print-directory browser-check PAGES=$(OUT)/report/report.html
+
+# make browser-check   opens PAGES (default: every out/report/*.html) in
+#               headless Chromium (Debian's chromium, over the DevTools
+#               pipe; no network): fails on an image that does not decode
+#               (or a PNG that is not whole) and on a link to a missing file
+#               or id; writes a full-page screenshot of each page to
+#               out/report/screenshots/. About 5 s per page.
+PAGES ?= $(wildcard $(OUT)/report/*.html)
+.PHONY: browser-check
+browser-check: setup
+	@test -n "$(PAGES)" || { echo "browser-check: no pages (run make or make report first, or give PAGES=...)" >&2; exit 2; }
+	@$(ENV) python scripts/browser_check.py $(PAGES) --shots $(OUT)/report/screenshots
 
 plan: build
 	@mkdir -p $(dir $(PLAN_OUT))

@@ -230,7 +230,7 @@ int cmd_plan(const std::vector<std::string>& argv) {
                     "cells", "children"});
     const Args a(with_default_size(argv, kStudyDefaultSize), options, {"help", "quiet"});
     if (a.has("help")) {
-        std::printf("%s%s", kUsage, study_scene_help());
+        std::printf("%s%s%s", kUsage, study_scene_help(), mesh_formats_help().c_str());
         std::printf(
             "  --max-extra-work P   bound on extra box tests, percent (>= 0)      [required]\n"
             "  --widths SPEC    candidates in order: A:B[:S] | W,.. | CxD,..       [6:24]\n"

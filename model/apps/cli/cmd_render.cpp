@@ -26,7 +26,7 @@ int cmd_render(const std::vector<std::string>& argv) {
     options.insert("stats");
     const Args a(argv, options, {"help", "quiet"});
     if (a.has("help")) {
-        std::printf("%s%s", kUsage, kSceneHelp);
+        std::printf("%s%s%s", kUsage, kSceneHelp, mesh_formats_help().c_str());
         std::printf(
             "  --out FILE       PNG image                                        [render.png]\n"
             "  --stats FILE     statistics JSON (rays by kind, node visits, box and\n"

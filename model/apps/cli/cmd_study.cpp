@@ -35,7 +35,7 @@ int cmd_study(const std::vector<std::string>& argv) {
     const Args a(with_default_size(argv, kStudyDefaultSize), options,
                  {"help", "quiet", "no-queries", "no-work", "no-nearest", "no-direct"});
     if (a.has("help")) {
-        std::printf("%s%s", kUsage, study_scene_help());
+        std::printf("%s%s%s", kUsage, study_scene_help(), mesh_formats_help().c_str());
         std::printf(
             "  --widths SPEC    A:B[:S] | W,W,.. | CxD,CxD,..                   [6:24:2]\n"
             "  --local SPEC     local frames too, box widths K: A:B[:S] | K,K,.. (4..16) [none]\n"

@@ -27,7 +27,7 @@ int cmd_trace(const std::vector<std::string>& argv) {
     options.insert("limit");
     const Args a(argv, options, {"help", "quiet"});
     if (a.has("help")) {
-        std::printf("%s%s", kUsage, kSceneHelp);
+        std::printf("%s%s%s", kUsage, kSceneHelp, mesh_formats_help().c_str());
         std::printf(
             "  --out FILE       query file, '-' for stdout                       [required]\n"
             "  --limit Q        stop after Q queries (0: all)                    [0]\n"

@@ -2,6 +2,8 @@
 // `pluecker`: the golden model's command line.
 #include "commands.hpp"
 
+#include "pluecker/mesh.hpp"
+
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -19,7 +21,8 @@ constexpr const char* kUsage =
     "  study    extra traversal work and accuracy per fixed-point width\n"
     "  contract the RTL's port contract; writes or checks its generated files\n"
     "  accuracy every box test (float, binary32 units, fixed point) against exact\n"
-    "run 'pluecker <command> --help' for its options\n";
+    "run 'pluecker <command> --help' for its options (render, trace, plan and\n"
+    "study list the mesh file formats --scene reads)\n";
 
 }  // namespace
 
@@ -31,6 +34,8 @@ int main(int argc, char** argv) {
     }
     const std::string cmd = argv[1];
     const std::vector<std::string> rest(argv + 2, argv + argc);
+    pluecker::set_mesh_warning_handler(
+        [cmd](const std::string& m) { std::fprintf(stderr, "pluecker %s: warning: %s\n", cmd.c_str(), m.c_str()); });
     try {
         if (cmd == "render") return cmd_render(rest);
         if (cmd == "query") return cmd_query(rest);

@@ -29,7 +29,7 @@ inline std::set<std::string> study_scene_options() {
 }
 
 inline const char* study_scene_help() {
-    return "  --scene S        teapot | spheres | sphere:N | FILE (.obj/.ply)   [teapot]\n"
+    return "  --scene S        teapot | spheres | sphere:N | FILE (mesh formats below) [teapot]\n"
            "  --order O        fixed | dsa (the fixed-point path's orders)      [dsa]\n"
            "  --build B        median | sah                                     [sah]\n"
            "  --size N         image N x N                                      [128]\n"

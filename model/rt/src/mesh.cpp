@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: MIT
-// Mesh bounds, normalisation into the scene cube, and OBJ/PLY loading.
+// Mesh bounds, normalisation into the scene cube, and mesh file loading
+// (every format Assimp reads; OBJ and PLY get extra checks).
 #include "pluecker/mesh.hpp"
 
+#include <assimp/DefaultLogger.hpp>
 #include <assimp/Importer.hpp>
+#include <assimp/LogStream.hpp>
+#include <assimp/importerdesc.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <glm/common.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -16,13 +21,57 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string_view>
 
 namespace pluecker {
+
+namespace {
+
+void default_warning(const std::string& message) { std::fprintf(stderr, "warning: %s\n", message.c_str()); }
+
+std::function<void(const std::string&)>& warning_sink() {
+    static std::function<void(const std::string&)> sink = default_warning;
+    return sink;
+}
+
+void warn(const std::string& message) { warning_sink()(message); }
+
+}  // namespace
+
+void set_mesh_warning_handler(std::function<void(const std::string&)> handler) {
+    warning_sink() = handler ? std::move(handler) : default_warning;
+}
+
+std::vector<MeshFormat> mesh_formats() {
+    Assimp::Importer imp;
+    std::vector<MeshFormat> out;
+    for (std::size_t i = 0; i < imp.GetImporterCount(); ++i) {
+        const aiImporterDesc* d = imp.GetImporterInfo(i);
+        if (!d) continue;
+        MeshFormat f;
+        f.name = d->mName;
+        std::istringstream exts(d->mFileExtensions ? d->mFileExtensions : "");
+        for (std::string e; exts >> e;) f.extensions.push_back("." + e);
+        if (!f.extensions.empty()) out.push_back(std::move(f));
+    }
+    return out;
+}
+
+std::string mesh_extensions() {
+    std::vector<std::string> all;
+    for (const MeshFormat& f : mesh_formats()) all.insert(all.end(), f.extensions.begin(), f.extensions.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    std::string out;
+    for (const std::string& e : all) out += (out.empty() ? "" : " ") + e;
+    return out;
+}
 
 Box Mesh::bounds() const {
     Box b;
@@ -64,8 +113,8 @@ void check_readable(const std::string& path) {
     if (!std::filesystem::exists(st)) throw InputError(path + ": no such file");
     if (!std::filesystem::is_regular_file(st)) throw InputError(path + ": not a regular file");
     const std::string ext = lower_extension(path);
-    if (ext != ".obj" && ext != ".ply")
-        throw InputError(path + ": unknown mesh extension '" + ext + "' (expected .obj or .ply)");
+    if (ext.size() < 2 || !Assimp::Importer().IsExtensionSupported(ext))
+        throw InputError(path + ": unknown mesh extension '" + ext + "' (supported: " + mesh_extensions() + ")");
     if (std::filesystem::file_size(path, ec) == 0) throw InputError(path + ": empty mesh (empty file)");
 }
 
@@ -121,6 +170,33 @@ int ply_type_size(const std::string& t) {
     if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
     if (t == "double" || t == "float64") return 8;
     return 0;
+}
+
+// Edit distance of two short words (insertions, deletions, substitutions).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diag = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1] ? 1 : 0)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// The structural header keyword a word is a misspelling of (at most two
+// edits, case ignored), or null.
+const char* near_ply_keyword(const std::string& word) {
+    if (word.size() > 16) return nullptr;
+    std::string w = word;
+    for (char& ch : w) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    for (const char* k : {"format", "element", "property", "end_header"})
+        if (edit_distance(w, k) <= 2) return k;
+    return nullptr;
 }
 
 PlyHeader parse_ply_header(const std::string& data, const std::string& path) {
@@ -184,7 +260,17 @@ PlyHeader parse_ply_header(const std::string& data, const std::string& path) {
         } else if (kw == "end_header") {
             break;
         } else if (kw != "comment" && kw != "obj_info" && !kw.empty()) {
-            fail("unknown keyword '" + printable(kw) + "'");
+            // Some writers put a bare line in the header (Blender 2.47:
+            // 'Created by Blender3D 247 - www.blender3d.com - file: ...');
+            // Assimp skips it, so it is read as a comment. A misspelt
+            // structural keyword is still an error: skipping it would
+            // change the body's layout.
+            if (const char* near = near_ply_keyword(kw))
+                fail("unknown keyword '" + printable(kw) + "' (did you mean '" + near + "'?)");
+            if (!std::isalpha(static_cast<unsigned char>(kw[0])))  // data: the header ended unmarked
+                fail("unknown keyword '" + printable(kw) + "' (a data line before end_header?)");
+            warn(path + ":" + std::to_string(line_no) + ": PLY header: line without a keyword taken as a comment: '" +
+                 printable(line) + "'");
         }
     }
     if (h.format.empty()) throw InputError(path + ": PLY header has no format line");
@@ -274,6 +360,32 @@ void check_ply_structure(const std::string& path) {
         walk_ply_ascii(data, h, path);
     else
         walk_ply_binary(data, h, path);
+}
+
+// glTF 1.0, which Assimp 5.2 reads wrongly: its binary files load with the
+// meshes misplaced (a round trip through Assimp's own glTF 1.0 writer moves
+// them), and its reader can stop the process on an internal assertion.
+// glTF 2.0 (what Blender and current tools write) is read. The version is
+// asset.version in a .gltf file, the header's in a .glb file.
+void refuse_gltf1(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext != ".gltf" && ext != ".glb") return;
+    std::ifstream in(path, std::ios::binary);
+    std::string version;
+    if (ext == ".glb") {
+        unsigned char head[8] = {};
+        in.read(reinterpret_cast<char*>(head), 8);
+        if (in.gcount() == 8 && std::string(reinterpret_cast<char*>(head), 4) == "glTF")
+            version = std::to_string(head[4] | head[5] << 8 | head[6] << 16 | unsigned(head[7]) << 24);
+    } else {
+        const nlohmann::json j = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+        if (j.is_object() && j.contains("asset") && j["asset"].is_object() && j["asset"].contains("version") &&
+            j["asset"]["version"].is_string())
+            version = j["asset"]["version"].get<std::string>();
+    }
+    if (version == "1" || version.rfind("1.", 0) == 0)
+        throw InputError(path + ": glTF " + (version == "1" ? "1.0" : version) +
+                         " is not supported (Assimp 5.2 misplaces its meshes); export it as glTF 2.0");
 }
 
 // ---------------------------------------------------------------------------
@@ -412,12 +524,56 @@ Material to_material(const aiMaterial& am) {
     return m;
 }
 
-void append_mesh(Mesh& out, const aiMesh& am, const std::string& path) {
+// A node's transformation in double (Assimp's IsIdentity() has a tolerance;
+// identity here is exact).
+using Affine = std::array<double, 12>;  // row-major 3x4
+constexpr Affine kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0};
+
+Affine compose(const Affine& a, const aiMatrix4x4& m) {
+    const double b[12] = {m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4};
+    Affine r{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 4; ++j)
+            r[4 * i + j] = a[4 * i] * b[j] + a[4 * i + 1] * b[4 + j] + a[4 * i + 2] * b[8 + j] + (j == 3 ? a[4 * i + 3] : 0.0);
+    return r;
+}
+
+// Every placement of every mesh in the node hierarchy (formats such as
+// glTF, FBX, Collada and 3DS place meshes with node transformations; OBJ,
+// PLY, STL and OFF put them all at the root with the identity), in a
+// depth-first walk from the root.
+void collect_placements(const aiNode& node, const Affine& parent, std::vector<std::vector<Affine>>& out, int depth,
+                        const std::string& path) {
+    if (depth > 1000) throw InputError(path + ": node hierarchy deeper than 1000 (cyclic?)");
+    const Affine world = compose(parent, node.mTransformation);
+    for (unsigned k = 0; k < node.mNumMeshes; ++k)
+        if (node.mMeshes[k] < out.size()) out[node.mMeshes[k]].push_back(world);
+    for (unsigned c = 0; c < node.mNumChildren; ++c)
+        if (node.mChildren[c]) collect_placements(*node.mChildren[c], world, out, depth + 1, path);
+}
+
+void append_mesh(Mesh& out, const aiMesh& am, const Affine& xf, const std::string& path) {
     const std::size_t base = out.vertices.size();
     if (base + am.mNumVertices > std::numeric_limits<std::uint32_t>::max())
         throw InputError(path + ": more than 2^32-1 vertices");
-    for (unsigned vi = 0; vi < am.mNumVertices; ++vi)
-        out.vertices.emplace_back(am.mVertices[vi].x, am.mVertices[vi].y, am.mVertices[vi].z);
+    const bool identity = xf == kIdentity;
+    for (unsigned vi = 0; vi < am.mNumVertices; ++vi) {
+        const aiVector3D& p = am.mVertices[vi];
+        if (identity) {
+            out.vertices.emplace_back(p.x, p.y, p.z);
+            continue;
+        }
+        float q[3];
+        for (int i = 0; i < 3; ++i)
+            q[i] = static_cast<float>(xf[4 * i] * p.x + xf[4 * i + 1] * p.y + xf[4 * i + 2] * p.z + xf[4 * i + 3]);
+        if (!(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]))) {
+            std::ostringstream os;
+            os << path << ": non-finite coordinate at vertex " << vi << " after the node transformation ("
+               << q[0] << ' ' << q[1] << ' ' << q[2] << ')';
+            throw InputError(os.str());
+        }
+        out.vertices.emplace_back(q[0], q[1], q[2]);
+    }
     const auto mat = static_cast<std::uint16_t>(am.mMaterialIndex);
     for (unsigned fi = 0; fi < am.mNumFaces; ++fi) {
         const aiFace& f = am.mFaces[fi];
@@ -437,15 +593,61 @@ void append_mesh(Mesh& out, const aiMesh& am, const std::string& path) {
     }
 }
 
+// Assimp's error-level log messages during one import. Most are about what
+// a renderer of the mesh can do without (a missing .mtl file, a vertex
+// colour layer, a default material) and become warnings; but some
+// importers log an out-of-range index and go on with made-up data (the OFF
+// reader replaces the index and keeps the face), so a message about
+// something out of range refuses the file. Assimp's logger is
+// process-wide: loads are serialised.
+class ImportErrors : public Assimp::LogStream {
+public:
+    ImportErrors() {
+        Assimp::DefaultLogger::create(nullptr, Assimp::Logger::NORMAL, 0);
+        Assimp::DefaultLogger::get()->attachStream(this, Assimp::Logger::Err);
+    }
+    ~ImportErrors() override {
+        Assimp::DefaultLogger::get()->detachStream(this, Assimp::Logger::Err);
+        Assimp::DefaultLogger::kill();
+    }
+    ImportErrors(const ImportErrors&) = delete;
+    ImportErrors& operator=(const ImportErrors&) = delete;
+    void write(const char* message) override {
+        std::string m = message;
+        while (!m.empty() && (m.back() == '\n' || m.back() == '\r')) m.pop_back();
+        if (const auto colon = m.find(": "); m.rfind("Error, ", 0) == 0 && colon != std::string::npos)
+            m.erase(0, colon + 2);  // "Error, T0: " prefix
+        all.push_back(m);
+    }
+    std::vector<std::string> all;
+};
+
+std::mutex& import_mutex() {
+    static std::mutex m;
+    return m;
+}
+
 }  // namespace
 
 Mesh load_mesh_file(const std::string& path) {
     check_readable(path);
     if (lower_extension(path) == ".ply") check_ply_structure(path);
+    refuse_gltf1(path);
     Assimp::Importer imp;
     // Step 1: raw import, no post-processing, so bad input is reported before
     // anything else touches it.
-    const aiScene* sc = imp.ReadFile(path, 0);
+    const aiScene* sc = nullptr;
+    {
+        const std::lock_guard<std::mutex> lock(import_mutex());
+        ImportErrors errors;
+        sc = imp.ReadFile(path, 0);
+        if (sc)
+            for (const std::string& e : errors.all) {
+                if (e.find("out of range") != std::string::npos)
+                    throw InputError(path + ": cannot load mesh: " + e);
+                warn(path + ": " + e);
+            }
+    }
     if (!sc) throw InputError(load_failure(path, imp.GetErrorString()));
     check_raw(*sc, path);
     // Step 2: Triangulate splits an n-gon into n-2 triangles in place of the
@@ -461,6 +663,8 @@ Mesh load_mesh_file(const std::string& path) {
     m.name = path;
     for (unsigned i = 0; i < sc->mNumMaterials; ++i) m.materials.push_back(to_material(*sc->mMaterials[i]));
     if (m.materials.empty()) m.materials.emplace_back();
+    std::vector<std::vector<Affine>> placements(sc->mNumMeshes);
+    if (sc->mRootNode) collect_placements(*sc->mRootNode, kIdentity, placements, 0, path);
     for (unsigned mi = 0; mi < sc->mNumMeshes; ++mi) {
         const aiMesh& am = *sc->mMeshes[mi];
         if (am.mMaterialIndex >= m.materials.size()) {
@@ -468,7 +672,8 @@ Mesh load_mesh_file(const std::string& path) {
             os << path << ": material index " << am.mMaterialIndex << " out of range in mesh " << mi;
             throw InputError(os.str());
         }
-        append_mesh(m, am, path);
+        if (placements[mi].empty()) placements[mi].push_back(kIdentity);  // in no node: where it stands
+        for (const Affine& xf : placements[mi]) append_mesh(m, am, xf, path);
     }
     if (m.vertices.empty() || m.triangles.empty()) throw InputError(path + ": empty mesh (no triangles)");
     return m;

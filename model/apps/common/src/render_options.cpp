@@ -23,7 +23,7 @@ const std::set<std::string> kSceneOptions = {
     "box-bits", "grid-bits", "frames", "cells"};
 
 const char* const kSceneHelp =
-    "  --scene S        teapot | spheres | sphere:N | FILE (.obj/.ply)   [teapot]\n"
+    "  --scene S        teapot | spheres | sphere:N | FILE (mesh formats below) [teapot]\n"
     "  --test T         exact | smits | pluecker | fixed | local         [pluecker]\n"
     "                   | f32-pluecker | f32-pluecker-cons | f32-smits (the binary32\n"
     "                   units' bit-exact models, f32unit.hpp, on the float BVH)\n"
@@ -39,6 +39,16 @@ const char* const kSceneHelp =
     "  --eye X,Y,Z --look X,Y,Z --up X,Y,Z --fov DEG   camera (default: per scene)\n"
     "  --lights N       1 or 2 point lights                              [2]\n"
     "  --max-depth D    reflection/refraction levels                     [4]\n";
+
+std::string mesh_formats_help() {
+    std::string out = "mesh files (read with Assimp, chosen by extension, case-insensitive):\n";
+    for (const MeshFormat& f : mesh_formats()) {
+        std::string exts;
+        for (const std::string& e : f.extensions) exts += (exts.empty() ? "" : " ") + e;
+        out += "  " + exts + std::string(exts.size() < 24 ? 24 - exts.size() : 1, ' ') + f.name + "\n";
+    }
+    return out;
+}
 
 Vec3 parse_vec3(const Args& a, const std::string& name, const Vec3& fallback) {
     if (!a.has(name)) return fallback;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Triangle meshes: the built-in scenes (teapot, spheres, UV sphere) and
-// OBJ/PLY loading through Assimp. Every scene that reaches a BVH or a
+// mesh files of every format Assimp reads (mesh_formats()). Every scene that reaches a BVH or a
 // renderer goes through make_scene(), which normalises it into [-1,1]^3,
 // the coordinate range of the fixed-point format (see fixed.hpp).
 //
@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,25 +38,46 @@ struct Mesh {
     Box bounds() const;
 };
 
-// Loads an OBJ or PLY file (chosen by extension, case-insensitive) with
-// Assimp, triangulating polygons (an n-gon gives n-2 consecutive triangles)
-// and welding identical vertices within each Assimp mesh (unreferenced
-// vertices are dropped). All meshes of the file (OBJ: one per object/group
-// and material) are merged in Assimp's mesh order; within a mesh, triangles
-// keep the file's face order. Degenerate and duplicate triangles are kept
-// (Assimp's FindDegenerates step is not run); point and line primitives are
-// skipped. A PLY file's header and body layout are checked before Assimp
-// reads it (Assimp 5.2 hangs on a missing end_header or on a vertex or face
-// element without properties, and reads garbage from a truncated body): the
-// header lines must be exact ('element NAME COUNT' with a whole COUNT below
-// 2^32, 'property TYPE NAME', 'property list TYPE TYPE NAME', nothing
-// after), and an element with items must have properties. Throws
-// InputError naming the file for: a missing file, an unknown extension, a
-// malformed PLY header (with its line) or truncated PLY body, an Assimp
-// failure (with Assimp's reason; for an OBJ face index error also the line),
-// an empty mesh, a non-finite coordinate (with the vertex index) and an
-// index out of range.
+// Loads a mesh file with Assimp, in any format Assimp reads (chosen by
+// extension, case-insensitive: OBJ, PLY, STL ascii and binary, OFF, glTF 2.0
+// and GLB, FBX, 3DS, Collada, X3D, 3MF, ... as mesh_formats() lists),
+// triangulating polygons (an n-gon gives n-2 consecutive triangles) and
+// welding identical vertices within each Assimp mesh (unreferenced vertices
+// are dropped). All meshes of the file (OBJ: one per object/group and
+// material) are merged in Assimp's mesh order, each placed by the node
+// transformations above it (a mesh placed by several nodes appears once per
+// placement, in depth-first node order; a mesh in no node stays where it
+// is); within a mesh, triangles keep the file's face order. Degenerate and
+// duplicate triangles are kept (Assimp's FindDegenerates step is not run);
+// point and line primitives are skipped. A PLY file's header and body
+// layout are checked before Assimp reads it (Assimp 5.2 hangs on a missing
+// end_header or on a vertex or face element without properties, and reads
+// garbage from a truncated body): the header lines must be exact ('element
+// NAME COUNT' with a whole COUNT below 2^32, 'property TYPE NAME',
+// 'property list TYPE TYPE NAME', nothing after), and an element with items
+// must have properties; a header line that starts with no keyword (Blender
+// 2.47 writes 'Created by Blender3D 247 ...') is taken as a comment with a
+// warning, unless its first word is a misspelt keyword. Throws InputError
+// naming the file for: a missing file, an unsupported extension (with the
+// supported ones), a malformed PLY header (with its line) or truncated PLY
+// body, an Assimp failure (with Assimp's reason; for an OBJ face index error
+// also the line), an empty mesh, a non-finite coordinate (with the vertex
+// index) and an index out of range.
 Mesh load_mesh_file(const std::string& path);
+
+// A file format of the mesh library: its name and extensions (".stl").
+struct MeshFormat {
+    std::string name;
+    std::vector<std::string> extensions;
+};
+std::vector<MeshFormat> mesh_formats();
+
+// Every supported extension, sorted, space-separated (".3d .3ds ... .zgl").
+std::string mesh_extensions();
+
+// Where load_mesh_file's warnings go (a message naming the file and line);
+// by default "warning: MESSAGE" on stderr. An empty handler restores that.
+void set_mesh_warning_handler(std::function<void(const std::string&)> handler);
 
 // The Utah teapot: Newell's 32 bicubic Bezier patches, each tessellated into
 // t x t quads of two triangles; triangles that collapse at the lid and bottom

@@ -21,6 +21,10 @@ namespace pluecker::app {
 extern const std::set<std::string> kSceneOptions;
 extern const char* const kSceneHelp;
 
+// The mesh file formats (--scene FILE), one line each, from the mesh
+// library: extensions and name.
+std::string mesh_formats_help();
+
 // --NAME as X,Y,Z (finite floats), else `fallback`.
 Vec3 parse_vec3(const Args& a, const std::string& name, const Vec3& fallback);
 
