@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 
 APT_PACKAGES=(g++ make cmake pkg-config python3 python3-venv python3-dev liblz4-dev
               libglm-dev libgtest-dev libassimp-dev libstb-dev nlohmann-json3-dev libgmp-dev
-              iverilog z3 ccache tcl)
+              iverilog z3 ccache tcl chromium)
 if [ "${1:-}" = "--extra" ]; then shift; APT_PACKAGES+=("$@"); fi
 
 missing=()

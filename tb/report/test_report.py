@@ -109,3 +109,39 @@ def test_float32_comparison(tmp_path):
     assert rows["fixed 16x16"]["false_misses"] == 0
     assert "float_dsp1 against fixed 16x16" in log
     assert "Fixed point against float32" in (out / "report.html").read_text()
+
+
+def test_report_in_a_browser(tmp_path):
+    """The tiny report's page in headless Chromium (scripts/browser_check.py):
+    every image decodes, every link resolves, a screenshot is written; and
+    the same check finds each kind of breakage in a spoiled copy."""
+    import browser_check as bc
+
+    out, _ = run_report(tmp_path, tmp_path / "no_synth")
+    page = out / "report.html"
+    html = page.read_text()
+    # A spoiled copy: a truncated PNG, a missing file, links to nothing.
+    first = html.index("data:image/png;base64,") + len("data:image/png;base64,")
+    spoiled = (html[:first] + html[first:first + 200] + html[html.index('"', first):]).replace(
+        "</body>", '<img src="missing.png" alt="x"><a href="nowhere.html">a</a><a href="#no-such-id">b</a>'
+                   '<a id="here" href="#here">c</a><a href="report.json">d</a></body>')
+    (out / "spoiled.html").write_text(spoiled)
+    good, bad = bc.check_pages([page, out / "spoiled.html"], tmp_path / "shots")
+
+    n_images = html.count("<img ")
+    assert good["images"] == n_images > 0 and not good["bad_images"] and not good["bad_links"], good
+    shot = Path(good["screenshot"]).read_bytes()
+    assert shot.startswith(b"\x89PNG") and len(shot) > 50_000, len(shot)
+    assert len(bad["bad_images"]) == 2, bad["bad_images"]
+    assert any("missing.png" in b for b in bad["bad_images"]), bad["bad_images"]
+    assert any("PNG" in b or "decod" in b.lower() for b in bad["bad_images"]), bad["bad_images"]
+    assert sorted(bad["bad_links"]) == sorted([f"nowhere.html ({out / 'nowhere.html'} does not exist)",
+                                               "#no-such-id (no element with id 'no-such-id')"]), bad["bad_links"]
+    # The command line fails on the spoiled page and names what is broken.
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "browser_check.py"), str(out / "spoiled.html"),
+                        "--shots", str(tmp_path / "shots2")], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 1 and "broken image: missing.png" in r.stderr, r.stdout + r.stderr
+    # and passes the good one.
+    r = subprocess.run([sys.executable, str(ROOT / "scripts" / "browser_check.py"), str(page),
+                        "--shots", str(tmp_path / "shots3")], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0 and (tmp_path / "shots3" / "report.png").is_file(), r.stdout + r.stderr
