@@ -248,6 +248,19 @@ else
 	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 endif
 
+# make chip   a whole chip: pluecker_array of CHIP (NDSPxNLUT: units with
+#             MULT18X18D x units with fabric multipliers) at COORD_BITS/DIR_BITS,
+#             placed and routed on the LFE5U-85F (SEEDS, SPEEDS); the array's
+#             own box tests per second beside the one-unit extrapolation of
+#             out/synth/<C>x<D>/summary.json (make synth first). Results in
+#             out/synth/array_<NDSP>x<NLUT>_<C>x<D>/summary.json. A full chip
+#             takes nextpnr minutes to an hour per seed and grade on 2 cores.
+CHIP ?= 13x0
+.PHONY: chip
+chip: setup
+	$(ENV) python scripts/synth.py --array $(CHIP) --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
+	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+
 # Default widths, one seed, speed grade 8: a quick check that the RTL still
 # synthesises, places and routes (out/synth-smoke/).
 synth-smoke: setup

