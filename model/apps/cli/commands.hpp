@@ -19,6 +19,7 @@ int cmd_trace(const std::vector<std::string>& argv);
 int cmd_plan(const std::vector<std::string>& argv);
 int cmd_study(const std::vector<std::string>& argv);
 int cmd_contract(const std::vector<std::string>& argv);
+int cmd_cascade(const std::vector<std::string>& argv);
 int cmd_accuracy(const std::vector<std::string>& argv);
 
 }  // namespace pluecker::cli

@@ -19,6 +19,7 @@ constexpr const char* kUsage =
     "  trace    write the ray/box queries a traversal issues\n"
     "  plan     pick the smallest fixed-point widths a scene needs\n"
     "  study    extra traversal work and accuracy per fixed-point width\n"
+    "  cascade  narrow ternary tests escalating their doubts to a wide one\n"
     "  contract the RTL's port contract; writes or checks its generated files\n"
     "  accuracy every box test (float, binary32 units, fixed point) against exact\n"
     "run 'pluecker <command> --help' for its options (render, trace, plan and\n"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
         if (cmd == "trace") return cmd_trace(rest);
         if (cmd == "plan") return cmd_plan(rest);
         if (cmd == "study") return cmd_study(rest);
+        if (cmd == "cascade") return cmd_cascade(rest);
         if (cmd == "contract") return cmd_contract(rest);
         if (cmd == "accuracy") return cmd_accuracy(rest);
         std::fprintf(stderr, "pluecker: unknown command '%s'\n%s", cmd.c_str(), kUsage);

@@ -11,6 +11,8 @@
 #include "pluecker/study.hpp"
 
 #include <cstdio>
+#include <fstream>
+#include <iostream>
 #include <ostream>
 #include <set>
 #include <string>
@@ -99,6 +101,20 @@ inline void print_local_table(const StudyResult& r, std::ostream& os) {
                       static_cast<unsigned long long>(s.near.wrong_pixels));
         os << line;
     }
+}
+
+// --json FILE: the figures written to FILE, or to stdout for '-'.
+inline void write_json_option(const Args& a, const nlohmann::json& j) {
+    if (!a.has("json")) return;
+    const std::string path = a.get("json", "");
+    if (path == "-") {
+        std::cout << j.dump(2) << "\n";
+        return;
+    }
+    std::ofstream f(path);
+    if (!f) throw InputError("option --json: cannot write '" + path + "'");
+    f << j.dump(2) << "\n";
+    if (!f) throw InputError("option --json: cannot write '" + path + "'");
 }
 
 inline void print_study_table(const StudyResult& r, std::ostream& os) {

@@ -320,7 +320,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Runs tasks on up to `threads` threads; the first exception is rethrown.
+}  // namespace
+
 void run_tasks(std::vector<std::function<void()>>& tasks, int threads) {
     std::atomic<std::size_t> next{0};
     std::exception_ptr error;
@@ -345,6 +346,8 @@ void run_tasks(std::vector<std::function<void()>>& tasks, int threads) {
     for (auto& t : pool) t.join();
     if (error) std::rethrow_exception(error);
 }
+
+namespace {
 
 std::string pair_name(WidthPair w) { return std::to_string(w.coord_bits) + "x" + std::to_string(w.dir_bits); }
 
@@ -496,6 +499,8 @@ nlohmann::json rays_json(const RenderStats& s) {
     return j;
 }
 
+}  // namespace
+
 nlohmann::json work_json(const WorkFigures& f, const WorkFigures* ref, std::uint64_t pixels) {
     const TraversalStats& t = f.stats.traversal;
     const std::uint64_t rays = total_rays(f.stats);
@@ -530,6 +535,8 @@ nlohmann::json work_json(const WorkFigures& f, const WorkFigures* ref, std::uint
     }
     return j;
 }
+
+namespace {
 
 const char* kDefinitions[][2] = {
     {"reference",

@@ -202,6 +202,14 @@ std::uint64_t wrong_pixels(const Image& a, const Image& b);
 // 100 * (value - ref) / ref; 0 when both are 0.
 double extra_percent(std::uint64_t value, std::uint64_t ref);
 
+// Runs the tasks on up to `threads` threads (at least one); the first
+// exception is rethrown after all have stopped.
+void run_tasks(std::vector<std::function<void()>>& tasks, int threads);
+
+// One render's traversal figures as JSON, with the extra work against `ref`
+// when given (pixels: the image's, for the wrong-pixel fraction).
+nlohmann::json work_json(const WorkFigures& f, const WorkFigures* ref, std::uint64_t pixels);
+
 // The whole study; renders run on up to `threads` threads at once.
 StudyResult run_study(const Mesh& mesh, const Bvh& bvh, const StudyOptions& opts);
 
