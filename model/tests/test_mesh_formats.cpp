@@ -159,7 +159,7 @@ TEST(MeshFormats, UnsupportedExtensionNamesTheSupportedSet) {
 // `--help` of each command that takes --scene lists the formats, from the
 // library.
 TEST(MeshFormats, HelpListsThem) {
-    for (const char* cmd : {"render", "trace", "plan", "study"}) {
+    for (const char* cmd : {"render", "trace", "plan", "study", "cascade"}) {
         SCOPED_TRACE(cmd);
         std::string out;
         FILE* p = ::popen((std::string(PLUECKER_CLI) + " " + cmd + " --help").c_str(), "r");

@@ -75,6 +75,7 @@ int cmd_cascade(const std::vector<std::string>& argv) {
             "  --quiet          no progress on stderr\n"
             "(--size defaults to %d here.)\n",
             kStudyDefaultSize);
+        std::printf("%s", mesh_formats_help().c_str());
         return 0;
     }
     if (!a.positional().empty()) throw InputError("unexpected argument '" + a.positional().front() + "'");
