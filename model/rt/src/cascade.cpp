@@ -180,17 +180,7 @@ nlohmann::json counts_json(const CascadeCounts& c) {
 nlohmann::json cascade_study_json(const CascadeStudyResult& r, const Mesh& mesh, const Bvh& bvh, BuildMethod build) {
     const RenderOptions& o = r.options.render;
     const std::uint64_t pixels = static_cast<std::uint64_t>(o.width) * static_cast<std::uint64_t>(o.height);
-    nlohmann::json j;
-    j["scene"] = mesh.name;
-    j["triangles"] = mesh.triangles.size();
-    j["build"] = method_name(build);
-    j["bvh"] = {{"nodes", bvh.nodes.size()}, {"leaves", bvh.leaf_count()}, {"depth", bvh.depth()}};
-    j["order"] = order_name(o.order);
-    j["width"] = o.width;
-    j["height"] = o.height;
-    j["max_depth"] = o.max_depth;
-    j["threads"] = r.options.threads;
-    j["seconds"] = r.seconds;
+    nlohmann::json j = run_header_json(mesh, bvh, build, o, r.options.threads, r.seconds);
     j["wide"] = {{"coord_bits", r.options.wide.coord_bits}, {"dir_bits", r.options.wide.dir_bits}};
     j["definitions"] = {
         {"escalated_fraction", "uncertain narrow answers / narrow box queries of the cascade render"},

@@ -560,9 +560,8 @@ const char* kDefinitions[][2] = {
 
 }  // namespace
 
-nlohmann::json study_json(const StudyResult& r, const Mesh& mesh, const Bvh& bvh, BuildMethod build) {
-    const RenderOptions& o = r.options.render;
-    const std::uint64_t pixels = static_cast<std::uint64_t>(o.width) * static_cast<std::uint64_t>(o.height);
+nlohmann::json run_header_json(const Mesh& mesh, const Bvh& bvh, BuildMethod build, const RenderOptions& o,
+                               int threads, double seconds) {
     nlohmann::json j;
     j["scene"] = mesh.name;
     j["triangles"] = mesh.triangles.size();
@@ -572,8 +571,15 @@ nlohmann::json study_json(const StudyResult& r, const Mesh& mesh, const Bvh& bvh
     j["width"] = o.width;
     j["height"] = o.height;
     j["max_depth"] = o.max_depth;
-    j["threads"] = r.options.threads;
-    j["seconds"] = r.seconds;
+    j["threads"] = threads;
+    j["seconds"] = seconds;
+    return j;
+}
+
+nlohmann::json study_json(const StudyResult& r, const Mesh& mesh, const Bvh& bvh, BuildMethod build) {
+    const RenderOptions& o = r.options.render;
+    const std::uint64_t pixels = static_cast<std::uint64_t>(o.width) * static_cast<std::uint64_t>(o.height);
+    nlohmann::json j = run_header_json(mesh, bvh, build, o, r.options.threads, r.seconds);
     nlohmann::json defs;
     for (const auto& d : kDefinitions) defs[d[0]] = d[1];
     j["definitions"] = defs;

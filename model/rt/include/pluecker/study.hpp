@@ -202,6 +202,11 @@ std::uint64_t wrong_pixels(const Image& a, const Image& b);
 // 100 * (value - ref) / ref; 0 when both are 0.
 double extra_percent(std::uint64_t value, std::uint64_t ref);
 
+// The scene, BVH, render settings, threads and run time of a study's JSON
+// (study_json, cascade_study_json).
+nlohmann::json run_header_json(const Mesh& mesh, const Bvh& bvh, BuildMethod build, const RenderOptions& o,
+                               int threads, double seconds);
+
 // Runs the tasks on up to `threads` threads (at least one); the first
 // exception is rethrown after all have stopped.
 void run_tasks(std::vector<std::function<void()>>& tasks, int threads);
