@@ -21,7 +21,8 @@ module ooc_wrapper #(
     parameter int TAG_BITS = 16,
     parameter bit CONSERVATIVE = 1,
     parameter MUL_STYLE = "auto",
-    parameter int PIPELINE = 0
+    parameter int PIPELINE = 0,
+    parameter bit TERNARY = 0
 ) (
     input wire clk_i,
     input wire rst_i,
@@ -40,7 +41,8 @@ module ooc_wrapper #(
     output wire                out_valid_o,
     input  wire                out_ready_i,
     output wire [TAG_BITS-1:0] out_tag_o,
-    output wire                out_hit_o
+    output wire                out_hit_o,
+    output wire                out_strict_o
 );
   localparam int CW = 3 * COORD_BITS;
   localparam int DW = 3 * DIR_BITS;
@@ -54,10 +56,10 @@ module ooc_wrapper #(
   logic [CW-1:0] ooc_ray_org_q, ooc_ray_end_q, ooc_box_min_q, ooc_box_max_q;
   logic [DW-1:0] ooc_ray_dir_q;
   logic ooc_ray_end_valid_q;
-  logic ooc_in_ready_q, ooc_out_valid_q, ooc_out_hit_q;
+  logic ooc_in_ready_q, ooc_out_valid_q, ooc_out_hit_q, ooc_out_strict_q;
   logic [TAG_BITS-1:0] ooc_out_tag_q;
 
-  wire dut_in_ready, dut_out_valid, dut_out_hit;
+  wire dut_in_ready, dut_out_valid, dut_out_hit, dut_out_strict;
   wire [TAG_BITS-1:0] dut_out_tag;
 
   always_ff @(posedge clk_i) begin
@@ -86,6 +88,7 @@ module ooc_wrapper #(
     ooc_box_max_q       <= box_max_i;
     ooc_out_tag_q       <= dut_out_tag;
     ooc_out_hit_q       <= dut_out_hit;
+    ooc_out_strict_q    <= dut_out_strict;
   end
 
   pluecker_intersector #(
@@ -94,7 +97,8 @@ module ooc_wrapper #(
       .TAG_BITS(TAG_BITS),
       .CONSERVATIVE(CONSERVATIVE),
       .MUL_STYLE(MUL_STYLE),
-      .PIPELINE(PIPELINE)
+      .PIPELINE(PIPELINE),
+      .TERNARY(TERNARY)
   ) u_dut (
       .clk_i(clk_i),
       .rst_i(ooc_rst_q),
@@ -111,13 +115,15 @@ module ooc_wrapper #(
       .out_valid_o(dut_out_valid),
       .out_ready_i(ooc_out_ready_q),
       .out_tag_o(dut_out_tag),
-      .out_hit_o(dut_out_hit)
+      .out_hit_o(dut_out_hit),
+      .out_strict_o(dut_out_strict)
   );
 
   assign in_ready_o  = ooc_in_ready_q;
   assign out_valid_o = ooc_out_valid_q;
   assign out_tag_o   = ooc_out_tag_q;
   assign out_hit_o   = ooc_out_hit_q;
+  assign out_strict_o = ooc_out_strict_q;
 endmodule
 
 `default_nettype wire

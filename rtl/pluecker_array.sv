@@ -70,6 +70,7 @@ module pluecker_array #(
 
   for (genvar l = 0; l < N; l++) begin : g_unit
     localparam logic [31:0] STYLE = (l < N_DSP) ? 32'("dsp") : 32'("lut");
+    wire unused_strict;
     pluecker_intersector #(
         .COORD_BITS(COORD_BITS),
         .DIR_BITS(DIR_BITS),
@@ -93,7 +94,8 @@ module pluecker_array #(
         .out_valid_o(out_valid_o[l]),
         .out_ready_i(out_ready_i[l]),
         .out_tag_o(out_tag_o[l*TAG_BITS+:TAG_BITS]),
-        .out_hit_o(out_hit_o[l])
+        .out_hit_o(out_hit_o[l]),
+        .out_strict_o(unused_strict)  // TERNARY = 0: constant 0
     );
   end
 

@@ -112,6 +112,7 @@ module pluecker_axis #(
   wire                out_ready;
   wire [TAG_BITS:0]   out_tag;
   wire                out_hit;
+  wire                unused_strict;
 
   pluecker_intersector #(
       .COORD_BITS  (COORD_BITS),
@@ -136,7 +137,8 @@ module pluecker_axis #(
       .out_valid_o    (out_valid),
       .out_ready_i    (out_ready),
       .out_tag_o      (out_tag),
-      .out_hit_o      (out_hit)
+      .out_hit_o      (out_hit),
+      .out_strict_o   (unused_strict)  // TERNARY = 0: constant 0
   );
 
   // Padding bits of tdata above QUERY_BITS carry nothing.

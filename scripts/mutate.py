@@ -109,10 +109,10 @@ def _class_model(k: int) -> Mutant:
 _EXTRA_STAGE = (
     RTL,
     "  always_ff @(posedge clk_i) begin\n"
-    "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q)};\n  end",
-    "  logic v5_q;\n  logic [TAG_BITS:0] res5_q;\n"
+    "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};\n  end",
+    "  logic v5_q;\n  logic [TAG_BITS+1:0] res5_q;\n"
     "  always_ff @(posedge clk_i) begin\n"
-    "    v5_q <= rst_i ? 1'b0 : v4_q;\n    res5_q <= {tag4_q, ok4_q && (&edge_ok4_q)};\n  end\n"
+    "    v5_q <= rst_i ? 1'b0 : v4_q;\n    res5_q <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};\n  end\n"
     "  always_ff @(posedge clk_i) begin\n"
     "    if (v5_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= res5_q;\n  end")
 _EXTRA_STAGE_PTR = (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      if (v5_q) wr_ptr_q <= wr_ptr_q + 1'b1;")
@@ -127,12 +127,15 @@ MUTANTS: list[Mutant] = [
     # or sign(B_j) correction of |A_i|, |B_j| in the margin. A_i < 0 with
     # B_j >= 0 makes T_ij >= 0, so the edge test passes with any margin, and
     # B_j < 0 fails the origin test whatever the margin.
+    # 2T + M = 0 needs T < 0 (M >= 1), i.e. H == -1 and L + M == 2^K: the
+    # carry alone without a zero remainder is 2T + M > 0.
     Mutant("rtl-edge-strict", "RTL: edge test 2T + M > 0 instead of >= 0",
-           [(RTL, "assign edge_ok_d[k] = (t2 + m) >= 0;", "assign edge_ok_d[k] = (t2 + m) > 0;")],
+           [(RTL, "assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K]);",
+             "assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K] && (|lsum[K-1:0]));")],
            ["harness:6x6:boundary:20000"]),
     Mutant("rtl-nearest-margin", "RTL: nearest mode keeps the margin",
-           [(RTL, "wire signed [WS-1:0] m = CONSERVATIVE ? {{(WS - WM) {1'b0}}, m3_q[k]} : '0;",
-             "wire signed [WS-1:0] m = CONSERVATIVE ? {{(WS - WM) {1'b0}}, m3_q[k]} : {{(WS - WM) {1'b0}}, m3_q[k]};")],
+           [(RTL, "assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K]);",
+             "assign edge_ok_d[k] = !neg || (h_ones && lsum[K]);")],
            ["harness:8x8n:boundary:20000"]),
     *[_class_rtl(k) for k in range(8)],
     Mutant("rtl-entry-plane-pos", "RTL: entry plane of positive axes from HI (A_i = HI_i - O_i)",
@@ -172,15 +175,17 @@ MUTANTS: list[Mutant] = [
             (RTL, "localparam int LATENCY = 6 + S2X;", "localparam int LATENCY = 7 + S2X;")],
            ["harness:6x6:boundary:2000"], build_error=r"LATENCY differs from the port contract"),
     Mutant("rtl-latency-minus-one", "RTL: the S4 register bypassed (results one cycle early)",
-           [(RTL, "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q)};",
-             "    if (v3_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag3_q, ok3_q && (&edge_ok_d)};"),
+           [(RTL, "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};",
+             "    if (v3_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag3_q, ok3_q && (&edge_ok_d),\n"
+             "        TERNARY && oks3_q && (&edge_strict_d)};"),
             (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      if (v3_q) wr_ptr_q <= wr_ptr_q + 1'b1;")],
            ["harness:6x6:boundary:2000",
             "cocotb:tb/pluecker_intersector/test_pluecker_intersector.py::test_pluecker_intersector[c6_d6_cons]"
             "@throughput"]),
     # The handshake mutants of the formal harness (bounded check).
     Mutant("formal-credit-leak", "RTL: a credit returned on every output handshake, also with an input",
-           [(RTL, "if (give && !take) credits_d = credits_q + 1'b1;", "if (give) credits_d = credits_q + 1'b1;")],
+           [(RTL, "if (give && !take) credits_d = {credits_q[CT-2:0], 1'b1};",
+             "if (give) credits_d = {credits_q[CT-2:0], 1'b1};")],
            ["formal:6x6"]),
     Mutant("formal-read-without-ready", "RTL: the read pointer advances without out_ready_i",
            [(RTL, "if (give) rd_ptr_q <= rd_ptr_q + 1'b1;", "if (out_valid_o) rd_ptr_q <= rd_ptr_q + 1'b1;")],
@@ -196,7 +201,8 @@ MUTANTS: list[Mutant] = [
            [(RTL, "      if (rst_i) v_q <= '0;", "      if (rst_i) v_q <= v_q;")],
            ["formal:6x6p1"]),
     Mutant("formal-credit-leak-18x18", "RTL: the credit leak at the widest configuration (MUL_ADD 2)",
-           [(RTL, "if (give && !take) credits_d = credits_q + 1'b1;", "if (give) credits_d = credits_q + 1'b1;")],
+           [(RTL, "if (give && !take) credits_d = {credits_q[CT-2:0], 1'b1};",
+             "if (give) credits_d = {credits_q[CT-2:0], 1'b1};")],
            ["formal:18x18"]),
     # --- multipliers ---------------------------------------------------------
     Mutant("mul-dsp-unsigned-a", "pluecker_mul: MULT18X18D with SIGNEDA low (operand A unsigned)",

@@ -44,6 +44,11 @@ LFE5U-85F (the smallest of 156 MULT18X18D, 83,640 LUT4 slots and 83,640
 flip-flops over what one placed unit takes, as scripts/report_lib.py
 computes it for the global unit) and box tests per second per chip
 (units x CHILDREN x Fmax).
+
+--array NDSPxNLUT places pluecker_array (fpga/ooc_array_wrapper.sv; `make
+chip`), --cascade N:CxD:WCxWD pluecker_cascade: N narrow TERNARY lanes and
+the wide unit they escalate to (fpga/ooc_cascade_wrapper.sv); results in
+out/synth/array_*/ and out/synth/cascade_<N>_<C>x<D>_<WC>x<WD>/.
 """
 from __future__ import annotations
 
@@ -648,10 +653,49 @@ def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
                    "dir_bits": d, "pipeline": args.pipeline, "n_dsp": nd, "n_lut": nl}, tests_per_clock=nd + nl)
 
 
+CASCADE_WRAPPER = ROOT / "fpga" / "ooc_cascade_wrapper.sv"
+
+
+def parse_cascade(text: str) -> tuple[int, int, int, int, int]:
+    """'N:CxD:WCxWD': pluecker_cascade of N narrow CxD lanes and one wide
+    WCxWD unit, e.g. 2:8x8:16x16."""
+    m = re.fullmatch(r"(\d+):(\d+)x(\d+):(\d+)x(\d+)", text.strip())
+    if not m:
+        raise FlowError(f"--cascade '{text}': expected N:CxD:WCxWD, e.g. 2:8x8:16x16")
+    n, nc, nd, wc, wd = (int(g) for g in m.groups())
+    if n < 1:
+        raise FlowError(f"--cascade '{text}': at least one narrow lane")
+    if wc < nc or wd < nd:
+        raise FlowError(f"--cascade '{text}': the wide format must be at least as wide as the narrow one")
+    return n, nc, nd, wc, wd
+
+
+def cascade_design(n: int, nc: int, nd: int, wc: int, wd: int, args) -> Design:
+    """pluecker_cascade: N narrow TERNARY units and one wide unit, each with
+    its "auto" multipliers (the port contract's rows give the MULT18X18D
+    count); N box tests per clock (the lanes), the wide unit's work extra."""
+    try:
+        narrow, wide = contract.row(nc, nd, "auto", args.pipeline), contract.row(wc, wd, "auto", args.pipeline)
+    except contract.ContractError as e:
+        raise FlowError(str(e)) from None
+    row = {"latency": narrow["latency"], "fifo_depth": narrow["fifo_depth"],
+           "mult18x18d": n * narrow["mult18x18d"] + wide["mult18x18d"],
+           "multiplier": f"{n} narrow units ({narrow['multiplier']}), one wide ({wide['multiplier']})"}
+    name = f"cascade_{n}_{nc}x{nd}_{wc}x{wd}" + (f"_p{args.pipeline}" if args.pipeline else "")
+    params = {"N_NARROW": n, "NARROW_COORD_BITS": nc, "NARROW_DIR_BITS": nd, "WIDE_COORD_BITS": wc,
+              "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline}
+    return Design(name, "ooc_cascade_wrapper", CASCADE_WRAPPER, "pluecker_cascade", params, row,
+                  {"config": f"cascade {n}x{nc}x{nd}>{wc}x{wd}", "unit": "cascade", "name": name,
+                   "coord_bits": nc, "dir_bits": nd, "wide_coord_bits": wc, "wide_dir_bits": wd,
+                   "pipeline": args.pipeline, "n_narrow": n}, tests_per_clock=n)
+
+
 def design_of(spec: tuple, args) -> Design:
     """The Design of a configuration spec: ("fixed", C, D), ("float",) or
     ("local", K, D, G) (plain data, so that a job carries it to a worker)."""
     kind, *size = spec
+    if kind == "cascade":
+        return cascade_design(*size, args)
     if kind == "array":
         return array_design(*size, args)
     if kind == "local":
@@ -766,6 +810,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--array", default=None,
                    help="NDSPxNLUT: pluecker_array of NDSP units with MULT18X18D and NLUT in fabric at "
                         "--coord-bits/--dir-bits (e.g. 13x0, 0x38, 1x1); box tests per clock = NDSP + NLUT")
+    p.add_argument("--cascade", default=None,
+                   help="N:CxD:WCxWD: pluecker_cascade of N narrow TERNARY lanes at CxD escalating to one wide "
+                        "unit at WCxWD (e.g. 2:8x8:16x16); box tests per clock = N")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
     if args.local and args.unit != "fixed":
@@ -792,7 +839,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str]) -> int:
     args = parse_args(argv)
     try:
-        if args.array:
+        if args.cascade:
+            specs = [("cascade", *parse_cascade(args.cascade))]
+        elif args.array:
             nd, nl = parse_array(args.array)
             pairs = parse_widths(args.widths) if args.widths else [(args.coord_bits, args.dir_bits)]
             specs = [("array", c, d, nd, nl) for c, d in pairs]

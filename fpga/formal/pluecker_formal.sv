@@ -91,6 +91,7 @@ module pluecker_formal #(
   localparam int NST = 5 + S2X_STAGES;
 
   wire in_ready_o, out_valid_o, out_hit_o;
+  wire out_strict_o;  // TERNARY = 0: constant 0
   wire [TAG_BITS-1:0] out_tag_o;
 
   pluecker_intersector #(
@@ -116,7 +117,8 @@ module pluecker_formal #(
       .out_valid_o(out_valid_o),
       .out_ready_i(out_ready_i),
       .out_tag_o(out_tag_o),
-      .out_hit_o(out_hit_o)
+      .out_hit_o(out_hit_o),
+      .out_strict_o(out_strict_o)
   );
 
   wire take = in_valid_i && in_ready_o && !rst_i;
@@ -178,18 +180,23 @@ module pluecker_formal #(
   wire [TAG_BITS-1:0] probe_tag0, probe_tag1, probe_tag2, probe_tag3, probe_tag4;
   wire [S2W-1:0][TAG_BITS-1:0] probe_tag2x;
   wire [SEQ_BITS-1:0] probe_wr, probe_rd;
-  wire [TAG_BITS:0] probe_fifo[FIFO_DEPTH];  // {tag, hit}
-  wire [SEQ_BITS-1:0] probe_credits;  // the DUT's CW = $clog2(FIFO_DEPTH + 1) bits
+  wire [TAG_BITS+1:0] probe_fifo[FIFO_DEPTH];  // {tag, hit, strict}
+  wire [FIFO_DEPTH:0] probe_credits;  // the DUT's thermometer codes (bit i: more than i)
   wire probe_ready;
+  wire [FIFO_DEPTH:0] probe_occ;
   // The history flops of the DUT's own assertions (ASSERT_ON).
   wire probe_chk_live, probe_in_stall, probe_out_stall;
   wire [IN_W-1:0] probe_in_prev;
-  wire [TAG_BITS:0] probe_out_prev;
+  wire [TAG_BITS+1:0] probe_out_prev;
   if (S2X_STAGES == 0) begin : g_no_s2x
     assign probe_v2x = '0;
     assign probe_tag2x = '0;
   end
   wire [SEQ_BITS-1:0] fifo_count = probe_wr - probe_rd;
+  // n as the DUT's thermometer code (bits 0..n-1 set).
+  function automatic logic [FIFO_DEPTH:0] thermometer(input logic [SEQ_BITS-1:0] n);
+    thermometer = ((FIFO_DEPTH + 1)'(1) << n) - 1'b1;
+  endfunction
 
   // The stages from the oldest (index 0: S4, S3, the S2x stages from the
   // last, S2, S1) to the youngest (NST - 1: S0): valid bit and tag.
@@ -264,14 +271,16 @@ module pluecker_formal #(
       // Credits: FIFO_DEPTH less the queries outstanding; ready follows the
       // credits (the DUT's a_credit_balance and a_ready_credit, which Yosys
       // checks one cycle late, as of the current state).
-      l_credits : assert (probe_credits == SEQ_BITS'(FIFO_DEPTH) - outstanding);
-      l_ready : assert (rst1_q ? !probe_ready : probe_ready == (probe_credits != '0));
+      l_credits : assert (probe_credits == thermometer(SEQ_BITS'(FIFO_DEPTH) - outstanding));
+      l_ready : assert (rst1_q ? !probe_ready : probe_ready == probe_credits[0]);
+      // The result count follows the pointers.
+      l_count : assert (probe_occ == thermometer(fifo_count));
       // The DUT's assertion history is the harness's.
       l_hist : assert (probe_chk_live == !rst1_q && probe_in_prev == in_prev_q &&
                        (rst1_q || probe_in_stall == in_stall_q));
       // A result offered and not taken is still offered (a_out_hold, now).
       if (!rst_i && !rst1_q && probe_out_stall)
-        l_out_hold : assert (out_valid_o && {out_tag_o, out_hit_o} == probe_out_prev);
+        l_out_hold : assert (out_valid_o && {out_tag_o, out_hit_o, out_strict_o} == probe_out_prev);
     end
   end
   for (genvar i = 0; i < NST; i++) begin : g_stage
@@ -290,7 +299,7 @@ module pluecker_formal #(
     wire [AW-1:0] idx = AW'(k) - probe_rd[AW-1:0];  // position behind the head
     always_comb begin
       if (!first_q && SEQ_BITS'(idx) < fifo_count && probe_rd + SEQ_BITS'(idx) == watch_seq)
-        assert (probe_fifo[k][TAG_BITS:1] == watch_tag);
+        assert (probe_fifo[k][TAG_BITS+1:2] == watch_tag);
     end
   end
 

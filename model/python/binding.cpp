@@ -19,6 +19,7 @@
 #include "pluecker/query.hpp"
 #include "pluecker/querygen.hpp"
 #include "pluecker/render.hpp"
+#include "pluecker/ternary.hpp"
 
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -552,6 +553,24 @@ PYBIND11_MODULE(pluecker_py, m) {
     m.def("fixed_hit", [](const Query& q, const FixedFormat& f) {
         return fixed_hit(q.ray, q.box, f);
     }, py::arg("query"), py::arg("fmt"), "Set up and test one float query");
+    // --- ternary answers (ternary.hpp) -------------------------------------
+    py::enum_<TernaryAnswer>(m, "TernaryAnswer")
+        .value("Miss", TernaryAnswer::Miss)
+        .value("Uncertain", TernaryAnswer::Uncertain)
+        .value("Hit", TernaryAnswer::Hit);
+    m.def("fixed_strict_hit", [](const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
+        check_query_operands(r, b, f);
+        return fixed_strict_hit(r, b, f);
+    }, py::arg("ray"), py::arg("box"), py::arg("fmt"),
+          "The strict test alone (out_strict_o of a TERNARY unit); conservative formats only");
+    m.def("fixed_ternary", [](const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
+        check_query_operands(r, b, f);
+        return fixed_ternary(r, b, f);
+    }, py::arg("ray"), py::arg("box"), py::arg("fmt"),
+          "Certain miss, certain hit or uncertain (out_hit_o, out_strict_o); conservative formats only");
+    m.def("fixed_ternary", [](const Ray& r, const Box& b, const FixedFormat& f) {
+        return fixed_ternary(r, b, f);
+    }, py::arg("ray"), py::arg("box"), py::arg("fmt"), "Set up and answer one float query");
     m.def("rtl_ports", &rtl_ports, py::arg("ray"), py::arg("box"), py::arg("fmt"),
           "Port values of rtl/pluecker_intersector.sv for one quantised query: a dict from port name "
           "(ray_class_i, ray_org_i, ray_dir_i, ray_end_i, ray_end_valid_i, box_min_i, box_max_i) to an "

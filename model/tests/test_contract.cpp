@@ -123,7 +123,7 @@ TEST(Contract, Ports) {
     cfg.dir_bits = 12;
     cfg.tag_bits = 5;
     const PortContract pc(cfg);
-    EXPECT_EQ(pc.ports().size(), 16u);
+    EXPECT_EQ(pc.ports().size(), 17u);
     EXPECT_EQ(pc.port("ray_org_i").width(), 30);
     EXPECT_EQ(pc.port("ray_org_i").field_lsb(1), 10);
     EXPECT_TRUE(pc.port("box_max_i").is_signed);

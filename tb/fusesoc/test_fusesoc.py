@@ -6,8 +6,9 @@ libraries, nothing else set up.
   - the core list holds every core of the project;
   - `fusesoc run --target lint` (Verilator -Wall through Edalize) passes
     for the intersector at the defaults and at 6/6 and for the AXI4-Stream
-    wrapper at the defaults and at COORD_BITS = 24 and for a mixed array
-    (two DSP lanes, one fabric lane), and fails, naming the parameter, at
+    wrapper at the defaults and at COORD_BITS = 24, for a mixed array
+    (two DSP lanes, one fabric lane), the ternary unit and a cascade of
+    three 8/8 lanes, and fails, naming the parameter, at
     COORD_BITS = 5;
   - `fusesoc run --target sim` of the intersector (cocotb on Verilator
     through Edalize) runs the bench's throughput test at 6/6 against the
@@ -23,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 MODEL_BUILD = Path(os.environ.get("PLUECKER_PY_DIR") or ROOT / "build" / "model")
 CORES = ["pluecker:fpga:ooc_wrapper:1.0.0", "pluecker:ip:array:1.0.0", "pluecker:ip:axis:1.0.0",
-         "pluecker:ip:common:1.0.0", "pluecker:ip:intersector:1.0.0"]
+         "pluecker:ip:cascade:1.0.0", "pluecker:ip:common:1.0.0", "pluecker:ip:intersector:1.0.0"]
 
 
 def fusesoc(args: list[str], build_root: Path, env: dict | None = None, timeout: int = 1800):
@@ -45,7 +46,9 @@ def test_core_list(tmp_path):
 def test_lint_targets(tmp_path):
     for core, params in [("pluecker:ip:intersector", []), ("pluecker:ip:intersector", ["--COORD_BITS=6",
                           "--DIR_BITS=6"]), ("pluecker:ip:axis", []), ("pluecker:ip:axis", ["--COORD_BITS=24"]),
-                         ("pluecker:ip:array", ["--N_DSP=2", "--N_LUT=1"])]:
+                         ("pluecker:ip:array", ["--N_DSP=2", "--N_LUT=1"]),
+                         ("pluecker:ip:intersector", ["--TERNARY=1"]),
+                         ("pluecker:ip:cascade", ["--N_NARROW=3", "--NARROW_COORD_BITS=8", "--NARROW_DIR_BITS=8"])]:
         r = fusesoc(["run", "--target", "lint", core, *params], tmp_path / "lint")
         assert r.returncode == 0, f"{core} {params}:\n{r.stdout}\n{r.stderr}"
         assert "verilator -f" in r.stdout + r.stderr, r.stdout + r.stderr

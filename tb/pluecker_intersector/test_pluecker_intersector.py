@@ -87,6 +87,26 @@ if cocotb is not None:
         bench.finish(f"stream {source}")
 
     @cocotb.test()
+    async def ternary_answers(dut) -> None:
+        """TERNARY builds (the others only log): out_hit_o and out_strict_o
+        against fixed_hit and fixed_strict_hit on random and set-up queries
+        in which all three answers occur (every test of this module compares
+        both bits on a TERNARY build)."""
+        bench = Bench(dut, _seed("ternary"), idle=True, backpressure=True)
+        if not bench.ternary:
+            dut._log.info("TERNARY = 0: out_strict_o is not built")
+            return
+        await bench.start()
+        vectors = _stimulus(bench, "random", _n(2000), "ternary") + _stimulus(bench, "setup", _n(1000), "ternary")
+        answers = {a: sum(1 for v in vectors if v.hit == a) for a in (0, 1, 2, 3)}
+        assert answers[1] == 0, "the model has a strict hit that fails the conservative test"
+        assert answers[0] and answers[2] and answers[3], f"not every ternary answer occurs: {answers}"
+        await bench.drive(vectors)
+        await bench.drain()
+        assert bench.compared == len(vectors), f"compared {bench.compared} of {len(vectors)}"
+        bench.finish(f"ternary (certain miss/uncertain/certain hit: {answers[0]}/{answers[2]}/{answers[3]})")
+
+    @cocotb.test()
     async def reset_mid_stream(dut) -> None:
         """Resets in the middle of a stream drop everything in flight."""
         bench = Bench(dut, _seed("reset"), idle=True, backpressure=True)
@@ -208,3 +228,31 @@ def test_pluecker_intersector(coord_bits: int, dir_bits: int, conservative: int,
     build.test("test_pluecker_intersector", plusargs=verilator_plusargs(_seed(name)),
                extra_env={"PLUECKER_TB_QUERIES": str(queries),
                           "PLUECKER_TB_MUL_STYLE": {"auto": "auto", "lut": "lut", "dsp-ecp5": "dsp"}[mul]})
+
+
+# TERNARY = 1 (out_strict_o: the strict test of ternary.hpp): fabric
+# multipliers at a narrow width, the MULT18X18D model at 16/16 with the
+# multipliers' extra register, and the widest format (both products split).
+TERNARY_CONFIGS = [(8, 8, "auto", 0), (16, 16, "dsp-ecp5", 1), (24, 24, "auto", 0)]
+
+
+@pytest.mark.parametrize("coord_bits,dir_bits,mul,pipeline", TERNARY_CONFIGS,
+                         ids=[f"c{c}_d{d}_ternary{f'_p{p}' if p else ''}_{m}" for c, d, m, p in TERNARY_CONFIGS])
+def test_pluecker_intersector_ternary(coord_bits: int, dir_bits: int, mul: str, pipeline: int) -> None:
+    from pluecker_tb import ecp5
+    from pluecker_tb.runner import VERILATOR_RTL_ARGS, Build, need_model, rtl_sources, verilator_plusargs
+
+    need_model()
+    name = f"c{coord_bits}_d{dir_bits}{f'_p{pipeline}' if pipeline else ''}_ternary_{mul}"
+    parameters = {"COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 16, "CONSERVATIVE": 1,
+                  "PIPELINE": pipeline, "TERNARY": 1}
+    sources, defines = rtl_sources(), {"ASSERT_ON": 1}
+    if mul == "dsp-ecp5":
+        parameters["MUL_STYLE"] = '"dsp"'
+        sources += ecp5.model_sources()
+        defines["PLUECKER_ECP5"] = 1
+    build = Build(name).build(sources=sources, hdl_toplevel=TOPLEVEL, parameters=parameters, defines=defines,
+                              build_args=VERILATOR_RTL_ARGS)
+    build.test("test_pluecker_intersector", plusargs=verilator_plusargs(_seed(name)),
+               extra_env={"PLUECKER_TB_QUERIES": "0.25",
+                          "PLUECKER_TB_MUL_STYLE": {"auto": "auto", "dsp-ecp5": "dsp"}[mul]})

@@ -36,13 +36,27 @@ class IntersectorBench(UnitBench):
         self.dir_bits = int(dut.DIR_BITS.value)
         self.conservative = bool(int(dut.CONSERVATIVE.value))
         self.fmt = pv.fixed_format(self.coord_bits, self.dir_bits, self.conservative)
+        try:  # a parameter the stress bench's flattened netlist does not keep
+            self.ternary = bool(int(dut.TERNARY.value))
+        except AttributeError:
+            self.ternary = False
         try:  # a localparam: not in a flattened netlist (the stress bench's Icarus run)
             latency = str(int(dut.LATENCY.value))
         except AttributeError:
             latency = "?"
         dut._log.info(
-            "DUT COORD_BITS=%d DIR_BITS=%d TAG_BITS=%d CONSERVATIVE=%d LATENCY=%s, seed %d, idle=%s backpressure=%s",
-            self.coord_bits, self.dir_bits, self.tag_bits, self.conservative, latency, seed, idle, backpressure)
+            "DUT COORD_BITS=%d DIR_BITS=%d TAG_BITS=%d CONSERVATIVE=%d TERNARY=%d LATENCY=%s, seed %d, idle=%s "
+            "backpressure=%s", self.coord_bits, self.dir_bits, self.tag_bits, self.conservative, self.ternary, latency,
+            seed, idle, backpressure)
+
+    def _transfer(self, edge: int) -> None:
+        """A TERNARY unit's answer is two bits: (out_hit_o << 1) | out_strict_o."""
+        if not self.ternary:
+            super()._transfer(edge)
+            return
+        dut = self.dut
+        self.scoreboard.check(int(dut.out_tag_o.value), (int(dut.out_hit_o.value) << 1) | int(dut.out_strict_o.value),
+                              edge)
 
 
 def stimulus(bench: IntersectorBench, source: str, n: int, salt: object) -> list:
@@ -56,4 +70,9 @@ def stimulus(bench: IntersectorBench, source: str, n: int, salt: object) -> list
     bench.dut._log.info("stimulus: %s, %d vectors, %d queries skipped (outside the format)",
                         stim.origin, len(stim.vectors), stim.skipped)
     assert stim.vectors, "no stimulus"
+    if bench.ternary:
+        vectors = pv.ternary_vectors(stim.vectors, bench.fmt)
+        counts = [sum(1 for v in vectors if v.hit == a) for a in (0, 2, 3)]
+        bench.dut._log.info("ternary answers of the model: %d certain misses, %d uncertain, %d certain hits", *counts)
+        return vectors
     return stim.vectors

@@ -39,6 +39,8 @@ class Vector:
     ports: dict[str, int]
     hit: bool
     describe: Callable[[], str]  # called only for error messages
+    ray: pp.FixedRay | None = None  # the quantised operands, when the vector has them
+    box: pp.FixedBox | None = None
 
 
 @dataclass
@@ -54,7 +56,21 @@ def fixed_format(coord_bits: int, dir_bits: int, conservative: bool) -> pp.Fixed
 
 
 def _fixed_vector(ray: pp.FixedRay, box: pp.FixedBox, fmt: pp.FixedFormat, what: Callable[[], str]) -> Vector:
-    return Vector(pp.rtl_ports(ray, box, fmt), pp.fixed_hit(ray, box, fmt), lambda: f"{what()}\n  {ray}\n  {box}")
+    return Vector(pp.rtl_ports(ray, box, fmt), pp.fixed_hit(ray, box, fmt), lambda: f"{what()}\n  {ray}\n  {box}",
+                  ray, box)
+
+
+def ternary_vectors(vectors: list[Vector], fmt: pp.FixedFormat) -> list[Vector]:
+    """The same queries with the answer of a TERNARY unit as two bits:
+    (out_hit_o << 1) | out_strict_o = (fixed_hit << 1) | fixed_strict_hit
+    (0 certain miss, 2 uncertain, 3 certain hit; 1 would be a strict hit
+    that fails the conservative test, which ternary.hpp proves impossible)."""
+    out = []
+    for v in vectors:
+        assert v.ray is not None and v.box is not None, "a ternary vector needs its quantised operands"
+        strict = pp.fixed_strict_hit(v.ray, v.box, fmt)
+        out.append(Vector(v.ports, (int(v.hit) << 1) | int(strict), v.describe, v.ray, v.box))
+    return out
 
 
 def from_queries(queries: list, fmt: pp.FixedFormat, origin: str) -> Stimulus:

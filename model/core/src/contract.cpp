@@ -147,6 +147,7 @@ PortContract::PortContract(const RtlConfig& config) : config_(config) {
         {"out_ready_i", D::In, 1, 1, false},
         {"out_tag_o", D::Out, 1, t, false},
         {"out_hit_o", D::Out, 1, 1, false},
+        {"out_strict_o", D::Out, 1, 1, false},  // TERNARY = 1 only (ternary.hpp), else 0
     };
 }
 

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: MIT
+// Out-of-context timing harness of pluecker_cascade for the ECP5 flow
+// (scripts/synth.py --cascade): every input of the cascade registered once
+// on its way in and every output once on its way out, so that every timed
+// path starts and ends at a flip-flop and nextpnr (--out-of-context) needs
+// no pins. The ports are the cascade's (rtl/pluecker_cascade.sv). Timing
+// and utilisation only: the extra register stage delays the ready bits by
+// a cycle, so the harness does not keep the valid/ready contract. Its
+// flip-flops are named ooc_*_q (counted apart from the cascade's); the
+// valid and ready bits are reset, the rest are not.
+`default_nettype none
+
+module ooc_cascade_wrapper #(
+    parameter int N_NARROW = 2,
+    parameter int NARROW_COORD_BITS = 8,
+    parameter int NARROW_DIR_BITS = 8,
+    parameter int WIDE_COORD_BITS = 16,
+    parameter int WIDE_DIR_BITS = 16,
+    parameter int TAG_BITS = 16,
+    parameter int PIPELINE = 0,
+    localparam int N = N_NARROW,
+    localparam int LANE_BITS = (N_NARROW > 1) ? $clog2(N_NARROW) : 1,
+    // The query payload of all lanes: narrow and wide class, origin,
+    // direction, end, end valid, box.
+    localparam int NQ = 3 + 4 * 3 * NARROW_COORD_BITS + 3 * NARROW_DIR_BITS + 1,
+    localparam int WQ = 3 + 4 * 3 * WIDE_COORD_BITS + 3 * WIDE_DIR_BITS + 1,
+    localparam int PW = N * (TAG_BITS + NQ + WQ)
+) (
+    input wire clk_i,
+    input wire rst_i,
+
+    input  wire [   N-1:0] in_valid_i,
+    output wire [   N-1:0] in_ready_o,
+    // Per lane l, bits [l*(TAG_BITS+NQ+WQ) +: ...]: {tag, narrow query as
+    // the cascade's ray_*_i/box_*_i fields, wide query as its wide_* fields}.
+    input  wire [  PW-1:0] payload_i,
+
+    output wire [         N-1:0] out_valid_o,
+    input  wire [         N-1:0] out_ready_i,
+    output wire [N*TAG_BITS-1:0] out_tag_o,
+    output wire [         N-1:0] out_hit_o,
+
+    output wire                          esc_valid_o,
+    input  wire                          esc_ready_i,
+    output wire [LANE_BITS+TAG_BITS-1:0] esc_tag_o,     // {lane, tag}
+    output wire                          esc_hit_o
+);
+  localparam int NC3 = 3 * NARROW_COORD_BITS;
+  localparam int ND3 = 3 * NARROW_DIR_BITS;
+  localparam int WC3 = 3 * WIDE_COORD_BITS;
+  localparam int WD3 = 3 * WIDE_DIR_BITS;
+  localparam int LW = TAG_BITS + NQ + WQ;
+
+  logic ooc_rst_q;
+  logic [N-1:0] ooc_in_valid_q, ooc_out_ready_q, ooc_in_ready_q, ooc_out_valid_q;
+  logic ooc_esc_ready_q, ooc_esc_valid_q;
+  logic [PW-1:0] ooc_payload_q;
+  logic [N*TAG_BITS-1:0] ooc_out_tag_q;
+  logic [N-1:0] ooc_out_hit_q;
+  logic [LANE_BITS+TAG_BITS-1:0] ooc_esc_tag_q;
+  logic ooc_esc_hit_q;
+
+  wire [N-1:0] dut_in_ready, dut_out_valid, dut_out_hit;
+  wire [N*TAG_BITS-1:0] dut_out_tag;
+  wire dut_esc_valid, dut_esc_hit;
+  wire [LANE_BITS-1:0] dut_esc_lane;
+  wire [TAG_BITS-1:0] dut_esc_tag;
+
+  always_ff @(posedge clk_i) begin
+    ooc_rst_q <= rst_i;
+    if (ooc_rst_q) begin
+      {ooc_in_valid_q, ooc_out_ready_q, ooc_in_ready_q, ooc_out_valid_q} <= '0;
+      {ooc_esc_ready_q, ooc_esc_valid_q} <= '0;
+    end else begin
+      {ooc_in_valid_q, ooc_out_ready_q, ooc_esc_ready_q} <= {in_valid_i, out_ready_i, esc_ready_i};
+      {ooc_in_ready_q, ooc_out_valid_q, ooc_esc_valid_q} <= {dut_in_ready, dut_out_valid, dut_esc_valid};
+    end
+  end
+
+  always_ff @(posedge clk_i) begin
+    ooc_payload_q <= payload_i;
+    {ooc_out_tag_q, ooc_out_hit_q} <= {dut_out_tag, dut_out_hit};
+    {ooc_esc_tag_q, ooc_esc_hit_q} <= {dut_esc_lane, dut_esc_tag, dut_esc_hit};
+  end
+
+  // The payload's fields, lane by lane.
+  logic [N*TAG_BITS-1:0] tag;
+  logic [N*3-1:0] cls, wcls;
+  logic [N*NC3-1:0] org, fin, lo, hi;
+  logic [N*ND3-1:0] dir;
+  logic [N*WC3-1:0] worg, wfin, wlo, whi;
+  logic [N*WD3-1:0] wdir;
+  logic [N-1:0] finv, wfinv;
+  for (genvar l = 0; l < N; l++) begin : g_lane
+    assign {tag[l*TAG_BITS+:TAG_BITS], cls[l*3+:3], org[l*NC3+:NC3], dir[l*ND3+:ND3], fin[l*NC3+:NC3], finv[l],
+            lo[l*NC3+:NC3], hi[l*NC3+:NC3], wcls[l*3+:3], worg[l*WC3+:WC3], wdir[l*WD3+:WD3],
+            wfin[l*WC3+:WC3], wfinv[l], wlo[l*WC3+:WC3], whi[l*WC3+:WC3]} = ooc_payload_q[l*LW+:LW];
+  end
+
+  pluecker_cascade #(
+      .N_NARROW(N_NARROW),
+      .NARROW_COORD_BITS(NARROW_COORD_BITS),
+      .NARROW_DIR_BITS(NARROW_DIR_BITS),
+      .WIDE_COORD_BITS(WIDE_COORD_BITS),
+      .WIDE_DIR_BITS(WIDE_DIR_BITS),
+      .TAG_BITS(TAG_BITS),
+      .PIPELINE(PIPELINE)
+  ) u_dut (
+      .clk_i(clk_i),
+      .rst_i(ooc_rst_q),
+      .in_valid_i(ooc_in_valid_q),
+      .in_ready_o(dut_in_ready),
+      .in_tag_i(tag),
+      .ray_class_i(cls),
+      .ray_org_i(org),
+      .ray_dir_i(dir),
+      .ray_end_i(fin),
+      .ray_end_valid_i(finv),
+      .box_min_i(lo),
+      .box_max_i(hi),
+      .wide_ray_class_i(wcls),
+      .wide_ray_org_i(worg),
+      .wide_ray_dir_i(wdir),
+      .wide_ray_end_i(wfin),
+      .wide_ray_end_valid_i(wfinv),
+      .wide_box_min_i(wlo),
+      .wide_box_max_i(whi),
+      .out_valid_o(dut_out_valid),
+      .out_ready_i(ooc_out_ready_q),
+      .out_tag_o(dut_out_tag),
+      .out_hit_o(dut_out_hit),
+      .esc_valid_o(dut_esc_valid),
+      .esc_ready_i(ooc_esc_ready_q),
+      .esc_lane_o(dut_esc_lane),
+      .esc_tag_o(dut_esc_tag),
+      .esc_hit_o(dut_esc_hit)
+  );
+
+  assign in_ready_o = ooc_in_ready_q;
+  assign {out_valid_o, out_tag_o, out_hit_o} = {ooc_out_valid_q, ooc_out_tag_q, ooc_out_hit_q};
+  assign {esc_valid_o, esc_tag_o, esc_hit_o} = {ooc_esc_valid_q, ooc_esc_tag_q, ooc_esc_hit_q};
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,288 @@
+// SPDX-License-Identifier: MIT
+// A cascade: N_NARROW narrow units answer certain hit / certain miss /
+// uncertain (pluecker_intersector with TERNARY = 1); the uncertain queries
+// are re-tested by one wide conservative unit shared by all of them.
+//
+// Why it never misses a real hit (model/core/include/pluecker/ternary.hpp
+// proves each step; cascade_answer there is this module's model): a narrow
+// certain miss fails the conservative test, which every real hit passes; a
+// narrow certain hit passes the strict test, which only real hits pass; an
+// uncertain query gets the wide unit's conservative answer, which misses no
+// real hit. The cascade's false hits are the wide unit's false hits on the
+// uncertain queries.
+//
+// Interface
+//   Lane l (0..N_NARROW-1) takes one query per transfer, in_valid_i[l] &&
+//   in_ready_o[l] at a rising edge with rst_i low: in_tag_i, the query in
+//   the narrow format (ray_*_i, box_*_i, packed as in
+//   rtl/pluecker_intersector.sv at NARROW_COORD_BITS / NARROW_DIR_BITS) and
+//   the same float query set up in the wide format (wide_*_i at
+//   WIDE_COORD_BITS / WIDE_DIR_BITS). Every vector port packs lane l in
+//   bits [l*W +: W] (W the width of one lane's field).
+//   Certain answers leave on lane l's own stream out_*[l] (out_hit_o: 1 a
+//   certain hit, 0 a certain miss), in the order of that lane's queries.
+//   Uncertain answers leave on the one escalation stream esc_*: esc_lane_o
+//   and esc_tag_o name the query, esc_hit_o is the wide unit's answer.
+//   Order: a query's answer leaves on exactly one of the two streams; on its
+//   lane's stream in order; on esc_* in the order the queries were
+//   escalated (so in order per lane as well). A consumer matches esc_*
+//   answers by lane and tag.
+//   The consumer must take the lane streams and esc_* independently (never
+//   hold esc_ready_i low waiting for a lane answer, or the reverse): each
+//   lane's answers leave its narrow unit in order, so an uncertain answer
+//   waiting for the wide unit holds the lane's certain answers behind it.
+//   rst_i (synchronous, active high) drops every query in flight anywhere;
+//   no answer of a query taken before it appears after it.
+//
+// Arbitration: each clock the wide unit takes at most one uncertain answer,
+// from the first requesting lane at or after a round-robin pointer; an
+// offer not taken is offered again unchanged (the pointer stays on it), a
+// taken one moves the pointer past its lane. With N_NARROW lanes each
+// escalating a fraction e of its queries, the cascade sustains N_NARROW
+// queries per clock while N_NARROW * e <= 1; above that the wide unit sets
+// the pace (lanes wait through their credits, nothing is lost).
+//
+// Per lane, the wide query waits in a FIFO beside the narrow unit: written
+// when the narrow unit takes the query, read when its answer leaves. The
+// narrow unit holds at most its FIFO_DEPTH queries (in flight and answered,
+// its credits), so a FIFO of that depth never overflows.
+//
+// Outputs from flops through the narrow units' output FIFOs and a few gates
+// (no combinational path from any input to any output).
+`default_nettype none
+
+module pluecker_cascade #(
+    parameter int N_NARROW = 2,
+    parameter int NARROW_COORD_BITS = 8,
+    parameter int NARROW_DIR_BITS = 8,
+    parameter NARROW_MUL_STYLE = "auto",
+    parameter int WIDE_COORD_BITS = 16,
+    parameter int WIDE_DIR_BITS = 16,
+    parameter WIDE_MUL_STYLE = "auto",
+    parameter int TAG_BITS = 8,
+    parameter int PIPELINE = 0,
+    // Bits of a lane number (not to be overridden).
+    localparam int LANE_BITS = (N_NARROW > 1) ? $clog2(N_NARROW) : 1
+) (
+    input wire clk_i,
+    input wire rst_i,
+
+    input  wire [                N_NARROW-1:0] in_valid_i,
+    output wire [                N_NARROW-1:0] in_ready_o,
+    input  wire [       N_NARROW*TAG_BITS-1:0] in_tag_i,
+    input  wire [              N_NARROW*3-1:0] ray_class_i,
+    input  wire [N_NARROW*3*NARROW_COORD_BITS-1:0] ray_org_i,
+    input  wire [  N_NARROW*3*NARROW_DIR_BITS-1:0] ray_dir_i,
+    input  wire [N_NARROW*3*NARROW_COORD_BITS-1:0] ray_end_i,
+    input  wire [                N_NARROW-1:0] ray_end_valid_i,
+    input  wire [N_NARROW*3*NARROW_COORD_BITS-1:0] box_min_i,
+    input  wire [N_NARROW*3*NARROW_COORD_BITS-1:0] box_max_i,
+    input  wire [              N_NARROW*3-1:0] wide_ray_class_i,
+    input  wire [N_NARROW*3*WIDE_COORD_BITS-1:0] wide_ray_org_i,
+    input  wire [  N_NARROW*3*WIDE_DIR_BITS-1:0] wide_ray_dir_i,
+    input  wire [N_NARROW*3*WIDE_COORD_BITS-1:0] wide_ray_end_i,
+    input  wire [                N_NARROW-1:0] wide_ray_end_valid_i,
+    input  wire [N_NARROW*3*WIDE_COORD_BITS-1:0] wide_box_min_i,
+    input  wire [N_NARROW*3*WIDE_COORD_BITS-1:0] wide_box_max_i,
+
+    output wire [         N_NARROW-1:0] out_valid_o,
+    input  wire [         N_NARROW-1:0] out_ready_i,
+    output wire [N_NARROW*TAG_BITS-1:0] out_tag_o,
+    output wire [         N_NARROW-1:0] out_hit_o,
+
+    output wire                 esc_valid_o,
+    input  wire                 esc_ready_i,
+    output wire [LANE_BITS-1:0] esc_lane_o,
+    output wire [ TAG_BITS-1:0] esc_tag_o,
+    output wire                 esc_hit_o
+);
+  localparam int N = N_NARROW;
+  localparam int NC3 = 3 * NARROW_COORD_BITS;
+  localparam int ND3 = 3 * NARROW_DIR_BITS;
+  localparam int WC3 = 3 * WIDE_COORD_BITS;
+  localparam int WD3 = 3 * WIDE_DIR_BITS;
+  // One wide query: class, origin, direction, end, end valid, box.
+  localparam int WQ = 3 + 4 * WC3 + WD3 + 1;
+
+  // An upper bound on the lanes of one wide unit (each lane costs a port of
+  // the arbiter's multiplexer).
+  localparam int MAX_LANES = 64;
+  if (N < 1 || N > MAX_LANES) begin : g_bad_n
+    $error("pluecker_cascade: parameter N_NARROW must be 1..64");
+  end
+  if (WIDE_COORD_BITS < NARROW_COORD_BITS || WIDE_DIR_BITS < NARROW_DIR_BITS) begin : g_bad_widths
+    $error("pluecker_cascade: the wide format must be at least as wide as the narrow one (WIDE_COORD_BITS >= NARROW_COORD_BITS, WIDE_DIR_BITS >= NARROW_DIR_BITS)");
+  end
+  // The narrow unit's FIFO depth, from the port contract (the units check
+  // their own parameters; a bad one makes the class -1 and this a guess).
+  localparam logic [31:0] NARROW_STYLE_S = 32'(NARROW_MUL_STYLE);
+  localparam int NARROW_CLASS = pluecker_contract_pkg::contract_class(NARROW_COORD_BITS, NARROW_DIR_BITS,
+                                                                       NARROW_STYLE_S, PIPELINE);
+  localparam int SIDE_DEPTH = (NARROW_CLASS < 0) ? 16 : pluecker_contract_pkg::contract_fifo_depth(NARROW_CLASS);
+  localparam int SIDE_AW = $clog2(SIDE_DEPTH);
+
+  // Narrow answers: valid, tag, conservative, strict.
+  wire [N-1:0] n_valid, n_ready, n_hit, n_strict, n_in_ready;
+  wire [N*TAG_BITS-1:0] n_tag;
+  // Uncertain answers asking for the wide unit, and the grant.
+  wire [N-1:0] req = n_valid & n_hit & ~n_strict;
+  logic [N-1:0] grant;
+  wire [N*WQ-1:0] side_head;  // per lane, the wide query of the narrow unit's oldest answer
+  wire w_in_ready;
+
+  for (genvar l = 0; l < N; l++) begin : g_lane
+    pluecker_intersector #(
+        .COORD_BITS(NARROW_COORD_BITS),
+        .DIR_BITS(NARROW_DIR_BITS),
+        .TAG_BITS(TAG_BITS),
+        .CONSERVATIVE(1),
+        .MUL_STYLE(NARROW_MUL_STYLE),
+        .PIPELINE(PIPELINE),
+        .TERNARY(1)
+    ) u_narrow (
+        .clk_i(clk_i),
+        .rst_i(rst_i),
+        .in_valid_i(in_valid_i[l]),
+        .in_ready_o(n_in_ready[l]),
+        .in_tag_i(in_tag_i[l*TAG_BITS+:TAG_BITS]),
+        .ray_class_i(ray_class_i[l*3+:3]),
+        .ray_org_i(ray_org_i[l*NC3+:NC3]),
+        .ray_dir_i(ray_dir_i[l*ND3+:ND3]),
+        .ray_end_i(ray_end_i[l*NC3+:NC3]),
+        .ray_end_valid_i(ray_end_valid_i[l]),
+        .box_min_i(box_min_i[l*NC3+:NC3]),
+        .box_max_i(box_max_i[l*NC3+:NC3]),
+        .out_valid_o(n_valid[l]),
+        .out_ready_i(n_ready[l]),
+        .out_tag_o(n_tag[l*TAG_BITS+:TAG_BITS]),
+        .out_hit_o(n_hit[l]),
+        .out_strict_o(n_strict[l])
+    );
+
+    // Certain answers (hit == strict) leave on the lane; uncertain ones wait
+    // for the wide unit to take their wide query.
+    assign out_valid_o[l] = n_valid[l] && !req[l];
+    assign out_tag_o[l*TAG_BITS+:TAG_BITS] = n_tag[l*TAG_BITS+:TAG_BITS];
+    assign out_hit_o[l] = n_hit[l];
+    assign n_ready[l] = req[l] ? (grant[l] && w_in_ready) : out_ready_i[l];
+    assign in_ready_o[l] = n_in_ready[l];
+
+    // The side FIFO of wide queries (pointers reset, contents not).
+    logic [WQ-1:0] side_q[SIDE_DEPTH];
+    logic [SIDE_AW:0] side_wr_q, side_rd_q;
+    wire push = in_valid_i[l] && n_in_ready[l];
+    wire pop = n_valid[l] && n_ready[l];
+    always_ff @(posedge clk_i) begin
+      if (rst_i) begin
+        side_wr_q <= '0;
+        side_rd_q <= '0;
+      end else begin
+        if (push) side_wr_q <= side_wr_q + 1'b1;
+        if (pop) side_rd_q <= side_rd_q + 1'b1;
+      end
+    end
+    always_ff @(posedge clk_i) begin
+      if (push)
+        side_q[side_wr_q[SIDE_AW-1:0]] <= {
+          wide_ray_class_i[l*3+:3],
+          wide_ray_org_i[l*WC3+:WC3],
+          wide_ray_dir_i[l*WD3+:WD3],
+          wide_ray_end_i[l*WC3+:WC3],
+          wide_ray_end_valid_i[l],
+          wide_box_min_i[l*WC3+:WC3],
+          wide_box_max_i[l*WC3+:WC3]
+        };
+    end
+    assign side_head[l*WQ+:WQ] = side_q[side_rd_q[SIDE_AW-1:0]];
+
+`ifdef ASSERT_ON
+    // The side FIFO holds exactly the narrow unit's queries (in flight and
+    // answered): never more than its depth. (Unlabelled: Yosys does not
+    // prefix labels inside generate blocks, so one label per lane clashes.)
+    wire [SIDE_AW:0] side_count = side_wr_q - side_rd_q;
+    always_ff @(posedge clk_i) begin
+      if (!rst_i) assert (32'(side_count) <= SIDE_DEPTH);
+    end
+`endif
+  end
+
+  // -------------------------------------------------------------------------
+  // Round-robin arbiter (rr_q: the lane with priority; control, reset)
+  // -------------------------------------------------------------------------
+  logic [LANE_BITS-1:0] rr_q, gidx;
+  wire any_req = |req;
+
+  int idx;
+  always_comb begin
+    grant = '0;
+    gidx = rr_q;
+    idx = 0;
+    for (int s = N - 1; s >= 0; s--) begin
+      // Lane rr_q + s (mod N); the loop runs downwards so that the smallest
+      // s with a request wins.
+      idx = 32'(rr_q) + s;
+      if (idx >= N) idx = idx - N;
+      if (req[idx]) begin
+        grant = '0;
+        grant[idx] = 1'b1;
+        gidx = LANE_BITS'(idx);
+      end
+    end
+  end
+
+  wire w_take = any_req && w_in_ready;
+  always_ff @(posedge clk_i) begin
+    if (rst_i) rr_q <= '0;
+    // Past a taken lane; onto an offered one that waits (held unchanged).
+    else if (w_take) rr_q <= (32'(gidx) + 1 >= N) ? '0 : gidx + 1'b1;
+    else if (any_req) rr_q <= gidx;
+  end
+
+  // The granted lane's wide query (one-hot multiplexer).
+  logic [WQ-1:0] w_query;
+  always_comb begin
+    w_query = '0;
+    for (int l = 0; l < N; l++) if (grant[l]) w_query = w_query | side_head[l*WQ+:WQ];
+  end
+
+  // -------------------------------------------------------------------------
+  // The wide unit: tag = {lane, tag}
+  // -------------------------------------------------------------------------
+  wire [2:0] w_class;
+  wire [WC3-1:0] w_org, w_end, w_min, w_max;
+  wire [WD3-1:0] w_dir;
+  wire w_end_valid;
+  assign {w_class, w_org, w_dir, w_end, w_end_valid, w_min, w_max} = w_query;
+  wire [LANE_BITS+TAG_BITS-1:0] w_tag = {gidx, n_tag[gidx*TAG_BITS+:TAG_BITS]};
+  wire unused_wide_strict;
+
+  pluecker_intersector #(
+      .COORD_BITS(WIDE_COORD_BITS),
+      .DIR_BITS(WIDE_DIR_BITS),
+      .TAG_BITS(LANE_BITS + TAG_BITS),
+      .CONSERVATIVE(1),
+      .MUL_STYLE(WIDE_MUL_STYLE),
+      .PIPELINE(PIPELINE)
+  ) u_wide (
+      .clk_i(clk_i),
+      .rst_i(rst_i),
+      .in_valid_i(any_req),
+      .in_ready_o(w_in_ready),
+      .in_tag_i(w_tag),
+      .ray_class_i(w_class),
+      .ray_org_i(w_org),
+      .ray_dir_i(w_dir),
+      .ray_end_i(w_end),
+      .ray_end_valid_i(w_end_valid),
+      .box_min_i(w_min),
+      .box_max_i(w_max),
+      .out_valid_o(esc_valid_o),
+      .out_ready_i(esc_ready_i),
+      .out_tag_o({esc_lane_o, esc_tag_o}),
+      .out_hit_o(esc_hit_o),
+      .out_strict_o(unused_wide_strict)  // TERNARY = 0: constant 0
+  );
+
+endmodule
+
+`default_nettype wire
