@@ -115,6 +115,8 @@ clean:
 # make sim-boundary  SIM_BOUNDARY_N operands on the decision boundaries (the
 #                  margin's bound, the end and origin tests) through the RTL,
 #                  --check against the model (part of the main job)
+# make sim-array-render  the same render through an array of units (sim/array/,
+#                  ARRAY_DSP + ARRAY_LUT lanes; its section below)
 # Variables: COORD_BITS, DIR_BITS, MODE (conservative|nearest), SIM_TAG_BITS.
 SIM_TAG_BITS ?= 8
 SIM_SIZE     ?= $(SIZE)
@@ -172,6 +174,100 @@ sim-float-render: build
 	  --out $$d/render_model.png --stats $$d/render_model.json && \
 	cmp $$d/render_rtl.png $$d/render_model.png && \
 	echo "sim-float-render: $(FLOAT_TEST) RTL render identical to the model's ($$d/render_rtl.png)"
+# ---- The array's harness (sim/array/) -----------------------------------------
+# make sim-array         builds build/sim/array_<ARRAY_DSP>x<ARRAY_LUT>_<C>x<D>[_nearest]/pluecker_sim_array:
+#                        rtl/pluecker_array.sv with ARRAY_DSP units on DSP multipliers and ARRAY_LUT
+#                        in fabric (up to 17/17 bits), one lane each
+# make sim-array-render  hardware-in-the-loop render of SCENE at SIM_SIZE, every batch spread over the
+#                        lanes, compared byte for byte with `pluecker render --test fixed` at
+#                        COORD_BITS/DIR_BITS (fails loudly when they differ)
+# make sim-array-check   ARRAY_N queries and operands of every kind through all lanes with
+#                        back-pressure, idle inputs and resets mid-stream, against the model
+# Variables: ARRAY_DSP, ARRAY_LUT (default 1 and 1), COORD_BITS, DIR_BITS, MODE, SIM_TAG_BITS.
+ARRAY_DSP     ?= 1
+ARRAY_LUT     ?= 1
+ARRAY_N       ?= 200000
+ARRAY_SIM_DIR  = build/sim/array_$(ARRAY_DSP)x$(ARRAY_LUT)_$(COORD_BITS)x$(DIR_BITS)$(if \
+                 $(filter nearest,$(MODE)),_nearest)
+ARRAY_SIM_BIN  = $(ARRAY_SIM_DIR)/pluecker_sim_array
+ARRAY_SIM_VARS = SIM_UNIT=array ARRAY_DSP=$(ARRAY_DSP) ARRAY_LUT=$(ARRAY_LUT) COORD_BITS=$(COORD_BITS) \
+                 DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) MODEL_BUILD=$(BUILD) \
+                 SIM_JOBS=$(JOBS) SIM_OUT=$(ARRAY_SIM_DIR)
+ARRAY_OUT      = $(OUT)/$(SCENE)_$(notdir $(ARRAY_SIM_DIR))
+
+.PHONY: sim-array sim-array-render sim-array-check
+
+sim-array: build
+	@$(ARRAY_SIM_VARS) $(ENV) sim/build.sh
+
+sim-array-render: sim-array
+	@mkdir -p $(OUT)
+	$(ARRAY_SIM_BIN) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet \
+	  --out $(ARRAY_OUT)_rtl.png --stats $(ARRAY_OUT)_rtl.json
+	$(CLI) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet --test fixed --coord-bits $(COORD_BITS) \
+	  --dir-bits $(DIR_BITS) --mode $(MODE) --out $(ARRAY_OUT)_model.png --stats $(ARRAY_OUT)_model.json
+	@if cmp $(ARRAY_OUT)_model.png $(ARRAY_OUT)_rtl.png; then \
+	  echo "sim-array-render: PASS: the array's render is bit-identical to the model's ($(ARRAY_OUT)_rtl.png)"; \
+	else echo "sim-array-render: FAIL: $(ARRAY_OUT)_rtl.png differs from $(ARRAY_OUT)_model.png" >&2; exit 1; fi
+
+sim-array-check: sim-array
+	$(ARRAY_SIM_BIN) check --n $(ARRAY_N) --kind all --ready 0.5 --valid 0.8 --reset-every 1000
+
+# ---- The cascade's harness (sim/cascade/) -------------------------------------
+# make sim-cascade         builds build/sim/cascade_<CASCADE_N>_<NC>x<ND>_<WC>x<WD>[_p1]/pluecker_sim_cascade:
+#                          rtl/pluecker_cascade.sv with CASCADE_N narrow TERNARY lanes at
+#                          NARROW_COORD_BITS/NARROW_DIR_BITS and one wide unit at WIDE_COORD_BITS/WIDE_DIR_BITS
+# make sim-cascade-render  hardware-in-the-loop render of SCENE at SIM_SIZE as `pluecker cascade` renders it,
+#                          every batch set up in both formats and spread over the lanes: its answers
+#                          (escalated count included) must equal `pluecker cascade`'s and its PNG the model's
+#                          render on the wide format byte for byte (fails loudly otherwise)
+# make sim-cascade-check   CASCADE_CHECK_N float queries of every kind through all lanes with back-pressure
+#                          on every output stream, idle inputs and resets mid-stream, against the model
+# Variables: CASCADE_N (2), NARROW_COORD_BITS/NARROW_DIR_BITS (8/8), WIDE_COORD_BITS/WIDE_DIR_BITS (16/16),
+# SIM_TAG_BITS, SIM_PIPELINE (0); the cascade is conservative only.
+CASCADE_N         ?= 2
+NARROW_COORD_BITS ?= 8
+NARROW_DIR_BITS   ?= 8
+WIDE_COORD_BITS   ?= 16
+WIDE_DIR_BITS     ?= 16
+SIM_PIPELINE      ?= 0
+CASCADE_CHECK_N   ?= 200000
+CASCADE_NARROW     = $(NARROW_COORD_BITS)x$(NARROW_DIR_BITS)
+CASCADE_WIDE       = $(WIDE_COORD_BITS)x$(WIDE_DIR_BITS)
+CASCADE_SIM_DIR    = build/sim/cascade_$(CASCADE_N)_$(CASCADE_NARROW)_$(CASCADE_WIDE)$(if $(filter 1,$(SIM_PIPELINE)),_p1)
+CASCADE_SIM_BIN    = $(CASCADE_SIM_DIR)/pluecker_sim_cascade
+CASCADE_SIM_VARS   = SIM_UNIT=cascade CASCADE_N=$(CASCADE_N) NARROW_COORD_BITS=$(NARROW_COORD_BITS) \
+                     NARROW_DIR_BITS=$(NARROW_DIR_BITS) WIDE_COORD_BITS=$(WIDE_COORD_BITS) \
+                     WIDE_DIR_BITS=$(WIDE_DIR_BITS) MODE=conservative SIM_TAG_BITS=$(SIM_TAG_BITS) \
+                     SIM_PIPELINE=$(SIM_PIPELINE) MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) SIM_OUT=$(CASCADE_SIM_DIR)
+CASCADE_OUT        = $(OUT)/$(SCENE)_$(notdir $(CASCADE_SIM_DIR))
+
+.PHONY: sim-cascade sim-cascade-render sim-cascade-check
+
+sim-cascade: build
+	@$(CASCADE_SIM_VARS) $(ENV) sim/build.sh
+
+sim-cascade-render: sim-cascade
+	@mkdir -p $(OUT)
+	$(CASCADE_SIM_BIN) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet \
+	  --out $(CASCADE_OUT)_rtl.png --stats $(CASCADE_OUT)_rtl.json
+	$(CLI) cascade --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet --narrow $(CASCADE_NARROW) \
+	  --wide $(CASCADE_WIDE) --no-alone --threads $(JOBS) --json $(CASCADE_OUT)_model.json > /dev/null
+	$(CLI) render --scene $(SCENE) --size $(SIM_SIZE) --order dsa --quiet --test fixed \
+	  --coord-bits $(WIDE_COORD_BITS) --dir-bits $(WIDE_DIR_BITS) --out $(CASCADE_OUT)_model.png
+	@$(ENV) python -c 'import json, sys; r, m = (json.load(open(f)) for f in sys.argv[1:]); \
+	  a, b = r["cascade"]["answers"], m["narrow"][0]["answers"]; \
+	  print("sim-cascade-render: %d of %d box queries escalated (model: %d)" % (a["escalated"], a["queries"], \
+	        b["escalated"])); \
+	  sys.exit(0 if a == b else "sim-cascade-render: FAIL: the cascade answers differ from pluecker cascade")' \
+	  $(CASCADE_OUT)_rtl.json $(CASCADE_OUT)_model.json
+	@if cmp $(CASCADE_OUT)_model.png $(CASCADE_OUT)_rtl.png; then \
+	  echo "sim-cascade-render: PASS: the cascade's render is bit-identical to the model's ($(CASCADE_OUT)_rtl.png)"; \
+	else echo "sim-cascade-render: FAIL: $(CASCADE_OUT)_rtl.png differs from $(CASCADE_OUT)_model.png" >&2; exit 1; fi
+
+sim-cascade-check: sim-cascade
+	$(CASCADE_SIM_BIN) check --n $(CASCADE_CHECK_N) --kind all --ready 0.5 --valid 0.8 --reset-every 1000
+
 # ---- The local unit's harness (sim/local/) -----------------------------------
 # make sim-local         builds build/sim/local_k<K>_d<D>_g<G>_c<C>[_nearest][_<style>]/pluecker_sim_local
 # make sim-local-query   LOCAL_QUERIES (default: 20000 generated, mixed and boundary) through the
@@ -255,11 +351,14 @@ endif
 #             out/synth/<C>x<D>/summary.json (make synth first). Results in
 #             out/synth/array_<NDSP>x<NLUT>_<C>x<D>/summary.json. A full chip
 #             takes nextpnr minutes to an hour per seed and grade on 2 cores.
+#             CASCADE=N:CxD:WCxWD places a pluecker_cascade instead (N narrow
+#             TERNARY lanes at CxD, one wide unit at WCxWD; e.g. 2:8x8:16x16,
+#             a few minutes): out/synth/cascade_<N>_<C>x<D>_<WC>x<WD>/.
 CHIP ?= 13x0
 .PHONY: chip
 chip: setup
-	$(ENV) python scripts/synth.py --array $(CHIP) --coord-bits $(COORD_BITS) --dir-bits $(DIR_BITS) \
-	  --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+	$(ENV) python scripts/synth.py $(if $(CASCADE),--cascade $(CASCADE),--array $(CHIP) --coord-bits $(COORD_BITS) \
+	  --dir-bits $(DIR_BITS)) --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 
 # Default widths, one seed, speed grade 8: a quick check that the RTL still
 # synthesises, places and routes (out/synth-smoke/).

@@ -15,7 +15,22 @@
 # unit with the harness in sim/float/: MODE defaults to nearest (float:
 # conservative = CONSERVATIVE 1; smits has nearest only), SIM_MUL_DSP (1, 3
 # or 4; default the contract's) is MUL_DSP, the widths are not used, and
-# SIM_OUT defaults to build/sim/<unit>[_cons]_dsp<M>.
+# SIM_OUT defaults to build/sim/<unit>[_cons]_dsp<M>. SIM_UNIT=array builds
+# `pluecker_sim_array`: rtl/pluecker_array.sv with the harness in
+# sim/array/, ARRAY_DSP units with MUL_STYLE dsp and ARRAY_LUT with
+# MUL_STYLE lut (0..256 each, 1..256 together; default 1 and 1), one lane
+# each, at COORD_BITS, DIR_BITS, MODE, SIM_TAG_BITS and SIM_PIPELINE; a
+# style the port contract has no class for at those widths (fabric units
+# take up to 17 bits) is refused; SIM_OUT defaults to
+# build/sim/array_<N_DSP>x<N_LUT>_<C>x<D>[_nearest]. SIM_UNIT=cascade builds
+# `pluecker_sim_cascade`: rtl/pluecker_cascade.sv with the harness in
+# sim/cascade/, CASCADE_N narrow lanes (1..64, default 2; TERNARY units at
+# NARROW_COORD_BITS x NARROW_DIR_BITS, default 8 x 8) escalating to one wide
+# conservative unit at WIDE_COORD_BITS x WIDE_DIR_BITS (default 16 x 16, at
+# least the narrow widths), all within the port contract's limits, at
+# SIM_TAG_BITS and SIM_PIPELINE; MODE must be conservative and COORD_BITS /
+# DIR_BITS are not used; SIM_OUT defaults to
+# build/sim/cascade_<N>_<NC>x<ND>_<WC>x<WD>[_p1] (_p1: SIM_PIPELINE=1).
 #
 # Settings (environment): COORD_BITS, DIR_BITS (the port contract's limits,
 # 6..24; default 16),
@@ -53,20 +68,38 @@ case "$MODE" in
   nearest) suffix="_nearest" ;;
   *) die "MODE=$MODE is not one of conservative, nearest" ;;
 esac
+# C and D from COORD_BITS and DIR_BITS (default 16), within the width
+# limits of the port contract (rtl/pluecker_contract.json).
+fixed_widths() {
+  C="${COORD_BITS:-16}"
+  D="${DIR_BITS:-16}"
+  read -r lo hi < <(python3 "$root/scripts/contract.py" limits) || true
+  [[ "${lo:-}" =~ ^[0-9]+$ && "${hi:-}" =~ ^[0-9]+$ ]] || die "cannot read the port contract (scripts/contract.py limits)"
+  for v in "COORD_BITS=$C" "DIR_BITS=$D"; do
+    val="${v#*=}"
+    is_int_in "$val" "$lo" "$hi" || die "${v%%=*}=$val is not an integer in $lo..$hi"
+  done
+  C=$((10#$C))
+  D=$((10#$D))
+}
+# The array's units of MUL_STYLE $2 (count $1, named by setting $3) must
+# have a class in the port contract at C x D and PIPELINE $4.
+array_style_ok() {
+  local count="$1" style="$2" setting="$3" pipeline="$4" msg range
+  ((count > 0)) || return 0
+  msg="$(python3 "$root/scripts/contract.py" row "$C" "$D" --mul-style "$style" --pipeline "$pipeline" \
+    2>&1 > /dev/null)" && return 0
+  [[ "$msg" == contract:* ]] || die "cannot read the port contract (scripts/contract.py row): $msg"
+  range="$(python3 "$root/scripts/contract.py" classes |
+    awk -v s="$style" '$5 == s { if ($2 > c) c = $2; if ($4 > d) d = $4 }
+      END { print "up to COORD_BITS=" c " DIR_BITS=" d }')"
+  die "$setting=$count: a unit with MUL_STYLE $style takes $range (the port contract," \
+    "rtl/pluecker_contract.json), not COORD_BITS=$C DIR_BITS=$D; set $setting=0 or narrower widths"
+}
 unit_args=()
 case "$unit" in
   global)
-    C="${COORD_BITS:-16}"
-    D="${DIR_BITS:-16}"
-    # The width limits of the port contract (rtl/pluecker_contract.json).
-    read -r lo hi < <(python3 "$root/scripts/contract.py" limits) || true
-    [[ "${lo:-}" =~ ^[0-9]+$ && "${hi:-}" =~ ^[0-9]+$ ]] || die "cannot read the port contract (scripts/contract.py limits)"
-    for v in "COORD_BITS=$C" "DIR_BITS=$D"; do
-      val="${v#*=}"
-      is_int_in "$val" "$lo" "$hi" || die "${v%%=*}=$val is not an integer in $lo..$hi"
-    done
-    C=$((10#$C))
-    D=$((10#$D))
+    fixed_widths
     default_out="build/sim/${C}x${D}${suffix}"
     unit_args=(-DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D")
     binary=pluecker_sim
@@ -106,7 +139,55 @@ case "$unit" in
     unit_args=(-DSIM_MUL_DSP="$M")
     binary=pluecker_sim
     ;;
-  *) die "SIM_UNIT=$unit is not one of global, local, float, smits" ;;
+  array)
+    fixed_widths
+    ND="${ARRAY_DSP:-1}"
+    NL="${ARRAY_LUT:-1}"
+    P="${SIM_PIPELINE:-0}"
+    is_int_in "$ND" 0 256 || die "ARRAY_DSP=$ND is not an integer in 0..256"
+    is_int_in "$NL" 0 256 || die "ARRAY_LUT=$NL is not an integer in 0..256"
+    ND=$((10#$ND))
+    NL=$((10#$NL))
+    ((ND + NL >= 1 && ND + NL <= 256)) ||
+      die "ARRAY_DSP + ARRAY_LUT = $((ND + NL)) is not in 1..256 (the array needs at least one unit)"
+    [[ "$P" =~ ^[01]$ ]] || die "SIM_PIPELINE=$P is not 0 or 1"
+    array_style_ok "$ND" dsp ARRAY_DSP "$P"
+    array_style_ok "$NL" lut ARRAY_LUT "$P"
+    default_out="build/sim/array_${ND}x${NL}_${C}x${D}${suffix}"
+    unit_args=(-DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_ARRAY_DSP="$ND" -DSIM_ARRAY_LUT="$NL")
+    binary=pluecker_sim_array
+    ;;
+  cascade)
+    [[ "$MODE" == conservative ]] ||
+      die "MODE=$MODE: the cascade is conservative only (its narrow units answer certain hit, certain miss or uncertain)"
+    read -r lo hi < <(python3 "$root/scripts/contract.py" limits) || true
+    [[ "${lo:-}" =~ ^[0-9]+$ && "${hi:-}" =~ ^[0-9]+$ ]] || die "cannot read the port contract (scripts/contract.py limits)"
+    N="${CASCADE_N:-2}"
+    NC="${NARROW_COORD_BITS:-8}"
+    ND="${NARROW_DIR_BITS:-8}"
+    WC="${WIDE_COORD_BITS:-16}"
+    WD="${WIDE_DIR_BITS:-16}"
+    P="${SIM_PIPELINE:-0}"
+    is_int_in "$N" 1 64 || die "CASCADE_N=$N is not an integer in 1..64 (the cascade's narrow lanes)"
+    for v in "NARROW_COORD_BITS=$NC" "NARROW_DIR_BITS=$ND" "WIDE_COORD_BITS=$WC" "WIDE_DIR_BITS=$WD"; do
+      val="${v#*=}"
+      is_int_in "$val" "$lo" "$hi" || die "${v%%=*}=$val is not an integer in $lo..$hi (the port contract's widths)"
+    done
+    [[ "$P" =~ ^[01]$ ]] || die "SIM_PIPELINE=$P is not 0 or 1"
+    N=$((10#$N))
+    NC=$((10#$NC))
+    ND=$((10#$ND))
+    WC=$((10#$WC))
+    WD=$((10#$WD))
+    ((WC >= NC && WD >= ND)) ||
+      die "the wide unit (WIDE_COORD_BITS=$WC WIDE_DIR_BITS=$WD) is narrower than the narrow lanes" \
+        "(NARROW_COORD_BITS=$NC NARROW_DIR_BITS=$ND): the wide widths must be at least the narrow ones"
+    default_out="build/sim/cascade_${N}_${NC}x${ND}_${WC}x${WD}$([[ $P == 1 ]] && echo _p1 || true)"
+    unit_args=(-DSIM_CASCADE_N="$N" -DSIM_NARROW_COORD_BITS="$NC" -DSIM_NARROW_DIR_BITS="$ND"
+      -DSIM_WIDE_COORD_BITS="$WC" -DSIM_WIDE_DIR_BITS="$WD")
+    binary=pluecker_sim_cascade
+    ;;
+  *) die "SIM_UNIT=$unit is not one of global, local, float, smits, array, cascade" ;;
 esac
 is_int_in "$T" 1 16 || die "SIM_TAG_BITS=$T is not an integer in 1..16"
 T=$((10#$T))

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// Subcommands of `pluecker_sim_cascade`, the Verilator harness of the
+// cascade. Each returns the exit status (0 ok, 1 mismatch or RTL protocol
+// error, 2 bad input) and throws InputError for bad input.
+#pragma once
+
+#include "cascade_rtl.hpp"
+
+#include "pluecker/app/args.hpp"
+#include "pluecker/cascade.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace pluecker::sim {
+
+int cmd_render(const std::vector<std::string>& argv);
+int cmd_check(const std::vector<std::string>& argv);
+
+// --narrow CxD and --wide CxD (one pair each) must be the build's widths
+// (one binary per configuration); a mismatch is an InputError naming the
+// make command that builds the right one.
+void check_build_widths(const app::Args& args);
+
+// A probability option in (0, 1] (--ready, --valid); InputError otherwise.
+double probability(const app::Args& args, const char* name, double fallback);
+
+// The stream options: out_ready_i and esc_ready_i high with probability
+// `ready`, in_valid_i of a lane with a query waiting with probability
+// `valid`.
+void configure_stream(CascadeRtl& rtl, double ready, double valid, std::uint64_t seed);
+
+// The "lanes" list of a JSON report: each lane's latencies, certain and
+// escalated answers, stall cycles, most queries in flight and queries
+// dropped by resets.
+nlohmann::json lanes_json(const CascadeRtl& rtl);
+
+// Counts in the form of the "answers" of `pluecker cascade --json`.
+nlohmann::json counts_json(const CascadeCounts& c);
+
+}  // namespace pluecker::sim
