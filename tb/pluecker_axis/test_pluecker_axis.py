@@ -176,6 +176,7 @@ if cocotb is not None:
         def __init__(self, bench: AxisBench):
             self.coord_bits, self.dir_bits = bench.coord_bits, bench.dir_bits
             self.conservative, self.fmt, self.dut = bench.conservative, bench.fmt, bench.dut
+            self.ternary = False  # the wrapper's unit answers hit or miss (TERNARY = 0)
 
     def _stimulus(bench: AxisBench, source: str, n: int, salt) -> list:
         return _intersector_stimulus(_StimulusHost(bench), source, n, salt)[:n]
