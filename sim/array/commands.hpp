@@ -6,6 +6,7 @@
 
 #include "array_rtl.hpp"
 
+#include "lane_options.hpp"
 #include "pluecker/app/args.hpp"
 
 #include <nlohmann/json.hpp>
@@ -25,15 +26,8 @@ int cmd_bench(const std::vector<std::string>& argv);
 // that builds the right one.
 void check_build_options(const app::Args& args);
 
-// A probability option in (0, 1] (--ready, --valid); InputError otherwise.
-double probability(const app::Args& args, const char* name, double fallback);
-
 // Removes `--name VALUE` (or `--name=VALUE`) from argv and returns VALUE.
 std::optional<std::string> take_option(std::vector<std::string>& argv, const std::string& name);
-
-// The array's stream options: out_ready_i high with probability `ready`,
-// in_valid_i of a lane with a query waiting with probability `valid`.
-void configure_stream(ArrayRtl& rtl, double ready, double valid, std::uint64_t seed);
 
 // The "lanes" list of a JSON report: each lane's style, latency, answers,
 // stall cycles, most queries in flight and queries dropped by resets.

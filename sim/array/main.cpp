@@ -31,13 +31,6 @@ void check_build_options(const app::Args& args) {
                      std::to_string(want.dir_bits) + " MODE=" + mode_name(want.mode));
 }
 
-double probability(const app::Args& args, const char* name, double fallback) {
-    const double p = args.get_double(name, fallback);
-    if (!(p > 0.0 && p <= 1.0))
-        throw InputError(std::string("option --") + name + ": " + args.get(name, "") + " is outside (0, 1]");
-    return p;
-}
-
 std::optional<std::string> take_option(std::vector<std::string>& argv, const std::string& name) {
     const std::string flag = "--" + name;
     for (std::size_t i = 0; i < argv.size(); ++i) {
@@ -53,11 +46,6 @@ std::optional<std::string> take_option(std::vector<std::string>& argv, const std
         return v;
     }
     return std::nullopt;
-}
-
-void configure_stream(ArrayRtl& rtl, double ready, double valid, std::uint64_t seed) {
-    rtl.set_backpressure(ready, seed);
-    rtl.set_idle(valid);
 }
 
 nlohmann::json lanes_json(const ArrayRtl& rtl) {

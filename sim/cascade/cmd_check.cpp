@@ -143,15 +143,8 @@ int cmd_check(const std::vector<std::string>& argv) {
         return 0;
     }
     if (!args.positional().empty()) throw InputError("unexpected argument '" + args.positional()[0] + "'");
-    const auto n = static_cast<std::size_t>(args.get_int("n", 200'000, 1, 10'000'000'000l));
-    const std::string kind = args.get("kind", "mixed");
+    const auto [n, kind, seed, ready, valid, reset_every] = lane_check_options(args);
     const std::vector<std::string> kinds = kinds_of(kind);
-    const auto seed = static_cast<std::uint64_t>(args.get_int("seed", 1, 0, 0x7fffffffffffffffl));
-    const double ready = probability(args, "ready", 1.0);
-    const double valid = probability(args, "valid", 1.0);
-    const auto reset_every = static_cast<std::uint64_t>(args.get_int("reset-every", 0, 0, 1'000'000'000'000l));
-    if (reset_every != 0 && reset_every < 16)
-        throw InputError("option --reset-every: " + std::to_string(reset_every) + " is below 16 cycles");
 
     CascadeRtl rtl;
     configure_stream(rtl, ready, valid, seed);

@@ -6,6 +6,7 @@
 
 #include "cascade_rtl.hpp"
 
+#include "lane_options.hpp"
 #include "pluecker/app/args.hpp"
 #include "pluecker/cascade.hpp"
 
@@ -23,14 +24,6 @@ int cmd_check(const std::vector<std::string>& argv);
 // (one binary per configuration); a mismatch is an InputError naming the
 // make command that builds the right one.
 void check_build_widths(const app::Args& args);
-
-// A probability option in (0, 1] (--ready, --valid); InputError otherwise.
-double probability(const app::Args& args, const char* name, double fallback);
-
-// The stream options: out_ready_i and esc_ready_i high with probability
-// `ready`, in_valid_i of a lane with a query waiting with probability
-// `valid`.
-void configure_stream(CascadeRtl& rtl, double ready, double valid, std::uint64_t seed);
 
 // The "lanes" list of a JSON report: each lane's latencies, certain and
 // escalated answers, stall cycles, most queries in flight and queries

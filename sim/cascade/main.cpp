@@ -40,18 +40,6 @@ void check_build_widths(const app::Args& args) {
                      " WIDE_DIR_BITS=" + std::to_string(w.dir_bits));
 }
 
-double probability(const app::Args& args, const char* name, double fallback) {
-    const double p = args.get_double(name, fallback);
-    if (!(p > 0.0 && p <= 1.0))
-        throw InputError(std::string("option --") + name + ": " + args.get(name, "") + " is outside (0, 1]");
-    return p;
-}
-
-void configure_stream(CascadeRtl& rtl, double ready, double valid, std::uint64_t seed) {
-    rtl.set_backpressure(ready, seed);
-    rtl.set_idle(valid);
-}
-
 nlohmann::json lanes_json(const CascadeRtl& rtl) {
     nlohmann::json lanes = nlohmann::json::array();
     for (int l = 0; l < kLanes; ++l) {
