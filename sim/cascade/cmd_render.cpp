@@ -87,8 +87,8 @@ nlohmann::json cascade_json(const CascadeRtlEngine& engine) {
     return {{"narrow", {{"coord_bits", f.narrow.coord_bits}, {"dir_bits", f.narrow.dir_bits}}},
             {"wide", {{"coord_bits", f.wide.coord_bits}, {"dir_bits", f.wide.dir_bits}}},
             {"lanes", kLanes},
-            {"answers", counts_json(engine.rtl_counts())},
-            {"model_answers", counts_json(engine.model_counts())},
+            {"answers", cascade_counts_json(engine.rtl_counts())},
+            {"model_answers", cascade_counts_json(engine.model_counts())},
             {"missed_range", engine.missed()},
             {"mismatches", engine.mismatches()}};
 }

@@ -30,7 +30,4 @@ void check_build_widths(const app::Args& args);
 // dropped by resets.
 nlohmann::json lanes_json(const CascadeRtl& rtl);
 
-// Counts in the form of the "answers" of `pluecker cascade --json`.
-nlohmann::json counts_json(const CascadeCounts& c);
-
 }  // namespace pluecker::sim

@@ -58,23 +58,6 @@ nlohmann::json lanes_json(const CascadeRtl& rtl) {
     return lanes;
 }
 
-nlohmann::json counts_json(const CascadeCounts& c) {
-    nlohmann::json j = {{"queries", c.queries},
-                        {"certain_hits", c.certain_hits},
-                        {"certain_misses", c.certain_misses},
-                        {"escalated", c.escalated},
-                        {"escalated_fraction", c.escalated_fraction()},
-                        {"wide_hits", c.wide_hits},
-                        {"hits", c.hits}};
-    if (c.checked)
-        j["checked"] = {{"queries", c.checked},
-                        {"exact_hits", c.exact_hits},
-                        {"false_hits", c.false_hits},
-                        {"false_misses", c.false_misses},
-                        {"false_certain_hits", c.false_certain_hits}};
-    return j;
-}
-
 }  // namespace pluecker::sim
 
 namespace {

@@ -156,9 +156,7 @@ CascadeStudyResult run_cascade_study(const Mesh& mesh, const Bvh& bvh, const Cas
     return res;
 }
 
-namespace {
-
-nlohmann::json counts_json(const CascadeCounts& c) {
+nlohmann::json cascade_counts_json(const CascadeCounts& c) {
     nlohmann::json j = {{"queries", c.queries},
                         {"certain_hits", c.certain_hits},
                         {"certain_misses", c.certain_misses},
@@ -174,8 +172,6 @@ nlohmann::json counts_json(const CascadeCounts& c) {
                         {"false_certain_hits", c.false_certain_hits}};
     return j;
 }
-
-}  // namespace
 
 nlohmann::json cascade_study_json(const CascadeStudyResult& r, const Mesh& mesh, const Bvh& bvh, BuildMethod build) {
     const RenderOptions& o = r.options.render;
@@ -198,7 +194,7 @@ nlohmann::json cascade_study_json(const CascadeStudyResult& r, const Mesh& mesh,
         nlohmann::json e = {{"coord_bits", row.narrow.coord_bits},
                             {"dir_bits", row.narrow.dir_bits},
                             {"cascade", work_json(w, &r.reference, pixels)},
-                            {"answers", counts_json(row.run.counts)}};
+                            {"answers", cascade_counts_json(row.run.counts)}};
         if (row.alone) e["narrow_alone"] = work_json(*row.alone, &r.reference, pixels);
         rows.push_back(e);
     }

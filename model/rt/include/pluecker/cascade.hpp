@@ -112,6 +112,9 @@ struct CascadeStudyResult {
 // InputError for an empty width list, a width outside 6..24, or a narrow
 // width that is not narrower than the wide one in both fields.
 CascadeStudyResult run_cascade_study(const Mesh& mesh, const Bvh& bvh, const CascadeStudyOptions& opts);
+// The answer counts of a cascade run (queries, certain hits and misses,
+// escalated, hits; with "checked" the comparison with the exact test).
+nlohmann::json cascade_counts_json(const CascadeCounts& c);
 nlohmann::json cascade_study_json(const CascadeStudyResult& r, const Mesh& mesh, const Bvh& bvh, BuildMethod build);
 
 }  // namespace pluecker
