@@ -351,14 +351,23 @@ endif
 #             out/synth/<C>x<D>/summary.json (make synth first). Results in
 #             out/synth/array_<NDSP>x<NLUT>_<C>x<D>/summary.json. A full chip
 #             takes nextpnr minutes to an hour per seed and grade on 2 cores.
-#             CASCADE=N:CxD:WCxWD places a pluecker_cascade instead (N narrow
-#             TERNARY lanes at CxD, one wide unit at WCxWD; e.g. 2:8x8:16x16,
-#             a few minutes): out/synth/cascade_<N>_<C>x<D>_<WC>x<WD>/.
-CHIP ?= 13x0
+#             CASCADE=[M*]N:CxD:WCxWD places M pluecker_cascades instead (N
+#             narrow TERNARY lanes at CxD, one wide unit at WCxWD each; e.g.
+#             2:8x8:16x16, a few minutes, or a chip of them, 11*2:8x8:16x16):
+#             out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>/ (a chip of them
+#             also against the one-cascade extrapolation: place it alone first).
+#             ROUTER: nextpnr's router for whole chips (router2 by default:
+#             router1 did not converge on the 13x0 chip in 108 minutes,
+#             router2 routed it in 17). PIPELINE=1 is what the measured
+#             chips use (fpga/TIMING.md).
+CHIP     ?= 13x0
+ROUTER   ?= router2
+PIPELINE ?= 0
 .PHONY: chip
 chip: setup
-	$(ENV) python scripts/synth.py $(if $(CASCADE),--cascade $(CASCADE),--array $(CHIP) --coord-bits $(COORD_BITS) \
-	  --dir-bits $(DIR_BITS)) --seeds $(SEEDS) --speeds "$(SPEEDS)" --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+	$(ENV) python scripts/synth.py $(if $(CASCADE),--cascade '$(CASCADE)',--array $(CHIP) --coord-bits $(COORD_BITS) \
+	  --dir-bits $(DIR_BITS)) --pipeline $(PIPELINE) --router $(ROUTER) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
+	  --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 
 # Default widths, one seed, speed grade 8: a quick check that the RTL still
 # synthesises, places and routes (out/synth-smoke/).

@@ -1,16 +1,19 @@
 // SPDX-License-Identifier: MIT
 // Out-of-context timing harness of pluecker_cascade for the ECP5 flow
-// (scripts/synth.py --cascade): every input of the cascade registered once
-// on its way in and every output once on its way out, so that every timed
-// path starts and ends at a flip-flop and nextpnr (--out-of-context) needs
-// no pins. The ports are the cascade's (rtl/pluecker_cascade.sv). Timing
-// and utilisation only: the extra register stage delays the ready bits by
-// a cycle, so the harness does not keep the valid/ready contract. Its
-// flip-flops are named ooc_*_q (counted apart from the cascade's); the
+// (scripts/synth.py --cascade): N_CASCADES independent cascades of
+// N_NARROW lanes each (a whole chip of them with N_CASCADES > 1), every
+// input registered once on its way in and every output once on its way
+// out, so that every timed path starts and ends at a flip-flop and nextpnr
+// (--out-of-context) needs no pins. Lane m*N_NARROW + l is lane l of
+// cascade m; escalation stream m is cascade m's esc_*. Timing and
+// utilisation only: the extra register stage delays the ready bits by a
+// cycle, so the harness does not keep the valid/ready contract. Its
+// flip-flops are named ooc_*_q (counted apart from the cascades'); the
 // valid and ready bits are reset, the rest are not.
 `default_nettype none
 
 module ooc_cascade_wrapper #(
+    parameter int N_CASCADES = 1,
     parameter int N_NARROW = 2,
     parameter int NARROW_COORD_BITS = 8,
     parameter int NARROW_DIR_BITS = 8,
@@ -18,13 +21,15 @@ module ooc_cascade_wrapper #(
     parameter int WIDE_DIR_BITS = 16,
     parameter int TAG_BITS = 16,
     parameter int PIPELINE = 0,
-    localparam int N = N_NARROW,
+    localparam int M = N_CASCADES,
+    localparam int N = M * N_NARROW,  // lanes in all
     localparam int LANE_BITS = (N_NARROW > 1) ? $clog2(N_NARROW) : 1,
     // The query payload of all lanes: narrow and wide class, origin,
     // direction, end, end valid, box.
     localparam int NQ = 3 + 4 * 3 * NARROW_COORD_BITS + 3 * NARROW_DIR_BITS + 1,
     localparam int WQ = 3 + 4 * 3 * WIDE_COORD_BITS + 3 * WIDE_DIR_BITS + 1,
-    localparam int PW = N * (TAG_BITS + NQ + WQ)
+    localparam int PW = N * (TAG_BITS + NQ + WQ),
+    localparam int EW = LANE_BITS + TAG_BITS
 ) (
     input wire clk_i,
     input wire rst_i,
@@ -40,31 +45,35 @@ module ooc_cascade_wrapper #(
     output wire [N*TAG_BITS-1:0] out_tag_o,
     output wire [         N-1:0] out_hit_o,
 
-    output wire                          esc_valid_o,
-    input  wire                          esc_ready_i,
-    output wire [LANE_BITS+TAG_BITS-1:0] esc_tag_o,     // {lane, tag}
-    output wire                          esc_hit_o
+    output wire [  M-1:0] esc_valid_o,
+    input  wire [  M-1:0] esc_ready_i,
+    output wire [M*EW-1:0] esc_tag_o,     // per cascade {lane, tag}
+    output wire [  M-1:0] esc_hit_o
 );
   localparam int NC3 = 3 * NARROW_COORD_BITS;
   localparam int ND3 = 3 * NARROW_DIR_BITS;
   localparam int WC3 = 3 * WIDE_COORD_BITS;
   localparam int WD3 = 3 * WIDE_DIR_BITS;
   localparam int LW = TAG_BITS + NQ + WQ;
+  localparam int K = N_NARROW;
+
+  if (N_CASCADES < 1) begin : g_bad_m
+    $error("ooc_cascade_wrapper: parameter N_CASCADES must be at least 1");
+  end
 
   logic ooc_rst_q;
   logic [N-1:0] ooc_in_valid_q, ooc_out_ready_q, ooc_in_ready_q, ooc_out_valid_q;
-  logic ooc_esc_ready_q, ooc_esc_valid_q;
+  logic [M-1:0] ooc_esc_ready_q, ooc_esc_valid_q;
   logic [PW-1:0] ooc_payload_q;
   logic [N*TAG_BITS-1:0] ooc_out_tag_q;
   logic [N-1:0] ooc_out_hit_q;
-  logic [LANE_BITS+TAG_BITS-1:0] ooc_esc_tag_q;
-  logic ooc_esc_hit_q;
+  logic [M*EW-1:0] ooc_esc_tag_q;
+  logic [M-1:0] ooc_esc_hit_q;
 
   wire [N-1:0] dut_in_ready, dut_out_valid, dut_out_hit;
   wire [N*TAG_BITS-1:0] dut_out_tag;
-  wire dut_esc_valid, dut_esc_hit;
-  wire [LANE_BITS-1:0] dut_esc_lane;
-  wire [TAG_BITS-1:0] dut_esc_tag;
+  wire [M-1:0] dut_esc_valid, dut_esc_hit;
+  wire [M*EW-1:0] dut_esc_tag;  // per cascade {lane, tag}
 
   always_ff @(posedge clk_i) begin
     ooc_rst_q <= rst_i;
@@ -80,7 +89,7 @@ module ooc_cascade_wrapper #(
   always_ff @(posedge clk_i) begin
     ooc_payload_q <= payload_i;
     {ooc_out_tag_q, ooc_out_hit_q} <= {dut_out_tag, dut_out_hit};
-    {ooc_esc_tag_q, ooc_esc_hit_q} <= {dut_esc_lane, dut_esc_tag, dut_esc_hit};
+    {ooc_esc_tag_q, ooc_esc_hit_q} <= {dut_esc_tag, dut_esc_hit};
   end
 
   // The payload's fields, lane by lane.
@@ -97,44 +106,49 @@ module ooc_cascade_wrapper #(
             wfin[l*WC3+:WC3], wfinv[l], wlo[l*WC3+:WC3], whi[l*WC3+:WC3]} = ooc_payload_q[l*LW+:LW];
   end
 
-  pluecker_cascade #(
-      .N_NARROW(N_NARROW),
-      .NARROW_COORD_BITS(NARROW_COORD_BITS),
-      .NARROW_DIR_BITS(NARROW_DIR_BITS),
-      .WIDE_COORD_BITS(WIDE_COORD_BITS),
-      .WIDE_DIR_BITS(WIDE_DIR_BITS),
-      .TAG_BITS(TAG_BITS),
-      .PIPELINE(PIPELINE)
-  ) u_dut (
-      .clk_i(clk_i),
-      .rst_i(ooc_rst_q),
-      .in_valid_i(ooc_in_valid_q),
-      .in_ready_o(dut_in_ready),
-      .in_tag_i(tag),
-      .ray_class_i(cls),
-      .ray_org_i(org),
-      .ray_dir_i(dir),
-      .ray_end_i(fin),
-      .ray_end_valid_i(finv),
-      .box_min_i(lo),
-      .box_max_i(hi),
-      .wide_ray_class_i(wcls),
-      .wide_ray_org_i(worg),
-      .wide_ray_dir_i(wdir),
-      .wide_ray_end_i(wfin),
-      .wide_ray_end_valid_i(wfinv),
-      .wide_box_min_i(wlo),
-      .wide_box_max_i(whi),
-      .out_valid_o(dut_out_valid),
-      .out_ready_i(ooc_out_ready_q),
-      .out_tag_o(dut_out_tag),
-      .out_hit_o(dut_out_hit),
-      .esc_valid_o(dut_esc_valid),
-      .esc_ready_i(ooc_esc_ready_q),
-      .esc_lane_o(dut_esc_lane),
-      .esc_tag_o(dut_esc_tag),
-      .esc_hit_o(dut_esc_hit)
-  );
+  for (genvar m = 0; m < M; m++) begin : g_cascade
+    wire [LANE_BITS-1:0] esc_lane;
+    wire [TAG_BITS-1:0] esc_tag;
+    pluecker_cascade #(
+        .N_NARROW(N_NARROW),
+        .NARROW_COORD_BITS(NARROW_COORD_BITS),
+        .NARROW_DIR_BITS(NARROW_DIR_BITS),
+        .WIDE_COORD_BITS(WIDE_COORD_BITS),
+        .WIDE_DIR_BITS(WIDE_DIR_BITS),
+        .TAG_BITS(TAG_BITS),
+        .PIPELINE(PIPELINE)
+    ) u_dut (
+        .clk_i(clk_i),
+        .rst_i(ooc_rst_q),
+        .in_valid_i(ooc_in_valid_q[m*K+:K]),
+        .in_ready_o(dut_in_ready[m*K+:K]),
+        .in_tag_i(tag[m*K*TAG_BITS+:K*TAG_BITS]),
+        .ray_class_i(cls[m*K*3+:K*3]),
+        .ray_org_i(org[m*K*NC3+:K*NC3]),
+        .ray_dir_i(dir[m*K*ND3+:K*ND3]),
+        .ray_end_i(fin[m*K*NC3+:K*NC3]),
+        .ray_end_valid_i(finv[m*K+:K]),
+        .box_min_i(lo[m*K*NC3+:K*NC3]),
+        .box_max_i(hi[m*K*NC3+:K*NC3]),
+        .wide_ray_class_i(wcls[m*K*3+:K*3]),
+        .wide_ray_org_i(worg[m*K*WC3+:K*WC3]),
+        .wide_ray_dir_i(wdir[m*K*WD3+:K*WD3]),
+        .wide_ray_end_i(wfin[m*K*WC3+:K*WC3]),
+        .wide_ray_end_valid_i(wfinv[m*K+:K]),
+        .wide_box_min_i(wlo[m*K*WC3+:K*WC3]),
+        .wide_box_max_i(whi[m*K*WC3+:K*WC3]),
+        .out_valid_o(dut_out_valid[m*K+:K]),
+        .out_ready_i(ooc_out_ready_q[m*K+:K]),
+        .out_tag_o(dut_out_tag[m*K*TAG_BITS+:K*TAG_BITS]),
+        .out_hit_o(dut_out_hit[m*K+:K]),
+        .esc_valid_o(dut_esc_valid[m]),
+        .esc_ready_i(ooc_esc_ready_q[m]),
+        .esc_lane_o(esc_lane),
+        .esc_tag_o(esc_tag),
+        .esc_hit_o(dut_esc_hit[m])
+    );
+    assign dut_esc_tag[m*EW+:EW] = {esc_lane, esc_tag};
+  end
 
   assign in_ready_o = ooc_in_ready_q;
   assign {out_valid_o, out_tag_o, out_hit_o} = {ooc_out_valid_q, ooc_out_tag_q, ooc_out_hit_q};

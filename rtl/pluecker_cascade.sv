@@ -30,14 +30,23 @@
 //   The consumer must take the lane streams and esc_* independently (never
 //   hold esc_ready_i low waiting for a lane answer, or the reverse): each
 //   lane's answers leave its narrow unit in order, so an uncertain answer
-//   waiting for the wide unit holds the lane's certain answers behind it.
+//   that finds its lane's escalation slot still occupied holds the lane's
+//   certain answers behind it.
 //   rst_i (synchronous, active high) drops every query in flight anywhere;
 //   no answer of a query taken before it appears after it.
 //
-// Arbitration: each clock the wide unit takes at most one uncertain answer,
-// from the first requesting lane at or after a round-robin pointer; an
-// offer not taken is offered again unchanged (the pointer stays on it), a
-// taken one moves the pointer past its lane. With N_NARROW lanes each
+// Escalation slots: an uncertain answer leaves its narrow unit into its
+// lane's slot (one entry: tag and wide query, loaded when the slot is empty
+// or emptied in the same clock), so the lane's next answers move on while
+// it waits for the wide unit, and the arbiter works on flops only: its
+// path (slot valid bits -> grant -> wide query multiplexer -> wide unit)
+// never crosses a narrow unit's FIFO read or another lane's handshake.
+// Arbitration: each clock the wide unit takes at most one slot, the first
+// full one at or after a round-robin pointer; an offer not taken is offered
+// again unchanged (the pointer stays on it), a taken one moves the pointer
+// past its lane; the granted query waits one clock in the wide unit's input
+// register. An escalated answer spends two more clocks than the two units'
+// LATENCY: one in its slot, one in that register. With N_NARROW lanes each
 // escalating a fraction e of its queries, the cascade sustains N_NARROW
 // queries per clock while N_NARROW * e <= 1; above that the wide unit sets
 // the pace (lanes wait through their credits, nothing is lost).
@@ -124,11 +133,19 @@ module pluecker_cascade #(
   // Narrow answers: valid, tag, conservative, strict.
   wire [N-1:0] n_valid, n_ready, n_hit, n_strict, n_in_ready;
   wire [N*TAG_BITS-1:0] n_tag;
-  // Uncertain answers asking for the wide unit, and the grant.
-  wire [N-1:0] req = n_valid & n_hit & ~n_strict;
+  // Uncertain answers leaving a narrow unit; full escalation slots (the
+  // arbiter's requests) and the grant.
+  wire [N-1:0] uncertain = n_valid & n_hit & ~n_strict;
+  logic [N-1:0] slot_v_q;
   logic [N-1:0] grant;
   wire [N*WQ-1:0] side_head;  // per lane, the wide query of the narrow unit's oldest answer
+  wire [N*WQ-1:0] slot_query;  // per lane, the wide query in its slot
+  wire [N*TAG_BITS-1:0] slot_tag;
   wire w_in_ready;
+  // The wide unit's input register (one query: the granted slot's), free
+  // when empty or taken by the wide unit in this clock.
+  logic wq_v_q;
+  wire wq_free = !wq_v_q || w_in_ready;
 
   for (genvar l = 0; l < N; l++) begin : g_lane
     pluecker_intersector #(
@@ -159,13 +176,34 @@ module pluecker_cascade #(
         .out_strict_o(n_strict[l])
     );
 
-    // Certain answers (hit == strict) leave on the lane; uncertain ones wait
-    // for the wide unit to take their wide query.
-    assign out_valid_o[l] = n_valid[l] && !req[l];
+    // Certain answers (hit == strict) leave on the lane; uncertain ones move
+    // into the lane's escalation slot when it is free (empty, or taken by
+    // the wide unit in this clock).
+    wire slot_take = grant[l] && wq_free;
+    wire slot_free = !slot_v_q[l] || slot_take;
+    wire slot_load = uncertain[l] && slot_free;
+    assign out_valid_o[l] = n_valid[l] && !uncertain[l];
     assign out_tag_o[l*TAG_BITS+:TAG_BITS] = n_tag[l*TAG_BITS+:TAG_BITS];
     assign out_hit_o[l] = n_hit[l];
-    assign n_ready[l] = req[l] ? (grant[l] && w_in_ready) : out_ready_i[l];
+    assign n_ready[l] = uncertain[l] ? slot_free : out_ready_i[l];
     assign in_ready_o[l] = n_in_ready[l];
+
+    // The escalation slot (valid bit reset, contents not).
+    logic [TAG_BITS-1:0] slot_tag_q;
+    logic [WQ-1:0] slot_query_q;
+    always_ff @(posedge clk_i) begin
+      if (rst_i) slot_v_q[l] <= 1'b0;
+      else if (slot_load) slot_v_q[l] <= 1'b1;
+      else if (slot_take) slot_v_q[l] <= 1'b0;
+    end
+    always_ff @(posedge clk_i) begin
+      if (slot_load) begin
+        slot_tag_q <= n_tag[l*TAG_BITS+:TAG_BITS];
+        slot_query_q <= side_head[l*WQ+:WQ];
+      end
+    end
+    assign slot_tag[l*TAG_BITS+:TAG_BITS] = slot_tag_q;
+    assign slot_query[l*WQ+:WQ] = slot_query_q;
 
     // The side FIFO of wide queries (pointers reset, contents not).
     logic [WQ-1:0] side_q[SIDE_DEPTH];
@@ -207,9 +245,11 @@ module pluecker_cascade #(
   end
 
   // -------------------------------------------------------------------------
-  // Round-robin arbiter (rr_q: the lane with priority; control, reset)
+  // Round-robin arbiter over the full slots (rr_q: the lane with priority;
+  // control, reset)
   // -------------------------------------------------------------------------
   logic [LANE_BITS-1:0] rr_q, gidx;
+  wire [N-1:0] req = slot_v_q;
   wire any_req = |req;
 
   int idx;
@@ -230,7 +270,7 @@ module pluecker_cascade #(
     end
   end
 
-  wire w_take = any_req && w_in_ready;
+  wire w_take = any_req && wq_free;
   always_ff @(posedge clk_i) begin
     if (rst_i) rr_q <= '0;
     // Past a taken lane; onto an offered one that waits (held unchanged).
@@ -238,11 +278,25 @@ module pluecker_cascade #(
     else if (any_req) rr_q <= gidx;
   end
 
-  // The granted lane's wide query (one-hot multiplexer).
-  logic [WQ-1:0] w_query;
+  // The granted slot's wide query (one-hot multiplexer) into the wide
+  // unit's input register (valid bit reset, contents not): the wide unit's
+  // class multiplexers and subtracts start from flops.
+  logic [WQ-1:0] w_query, wq_q;
+  logic [LANE_BITS+TAG_BITS-1:0] wq_tag_q;
   always_comb begin
     w_query = '0;
-    for (int l = 0; l < N; l++) if (grant[l]) w_query = w_query | side_head[l*WQ+:WQ];
+    for (int l = 0; l < N; l++) if (grant[l]) w_query = w_query | slot_query[l*WQ+:WQ];
+  end
+  always_ff @(posedge clk_i) begin
+    if (rst_i) wq_v_q <= 1'b0;
+    else if (w_take) wq_v_q <= 1'b1;
+    else if (w_in_ready) wq_v_q <= 1'b0;
+  end
+  always_ff @(posedge clk_i) begin
+    if (w_take) begin
+      wq_q <= w_query;
+      wq_tag_q <= {gidx, slot_tag[gidx*TAG_BITS+:TAG_BITS]};
+    end
   end
 
   // -------------------------------------------------------------------------
@@ -252,8 +306,7 @@ module pluecker_cascade #(
   wire [WC3-1:0] w_org, w_end, w_min, w_max;
   wire [WD3-1:0] w_dir;
   wire w_end_valid;
-  assign {w_class, w_org, w_dir, w_end, w_end_valid, w_min, w_max} = w_query;
-  wire [LANE_BITS+TAG_BITS-1:0] w_tag = {gidx, n_tag[gidx*TAG_BITS+:TAG_BITS]};
+  assign {w_class, w_org, w_dir, w_end, w_end_valid, w_min, w_max} = wq_q;
   wire unused_wide_strict;
 
   pluecker_intersector #(
@@ -266,9 +319,9 @@ module pluecker_cascade #(
   ) u_wide (
       .clk_i(clk_i),
       .rst_i(rst_i),
-      .in_valid_i(any_req),
+      .in_valid_i(wq_v_q),
       .in_ready_o(w_in_ready),
-      .in_tag_i(w_tag),
+      .in_tag_i(wq_tag_q),
       .ray_class_i(w_class),
       .ray_org_i(w_org),
       .ray_dir_i(w_dir),

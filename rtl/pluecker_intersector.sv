@@ -32,17 +32,22 @@
 // Pipeline (one query per clock; the datapath never stalls, there is no
 // clock enable on it: valid bits shift every cycle and back-pressure is
 // handled by an output FIFO and a credit counter)
-//   S0  input registers; the class picks the subtract operands in front of
-//       them (one LUT level from the ports)
-//   S1  subtract: A_i, B_i, G_i (end test G_i >= 0, reduced in S2),
-//       D_i + D_j + 1
+//   S0  subtract in front of the input registers (from the ports: the class
+//       picks the operands, one LUT level, then a carry chain): A_i, B_i
+//       and the end tests G_i >= 0, G_i >= 2 are registered, so that the
+//       multipliers' operands leave flops straight for their input
+//       registers (on a full chip the DSP columns are crowded and the
+//       route into them is long: it gets a whole clock period)
+//   S1  the multipliers' input registers; |A_i|, |B_j| in ones' complement
+//       form, D_i + D_j + 1
 //   S2  12 multipliers B_j*D_i, A_i*D_j (pluecker_mul: on ECP5 a MULT18X18D
 //       whose input registers are the S1 registers of the operands and whose
 //       output register is the S2 register; or, by MUL_STYLE, the fabric
 //       multiplier pluecker_mul_lut with the same two register stages); in parallel |A_i| + |B_j| (in
 //       ones' complement form), origin test B_i >= 0, end test
 //   S2x PIPELINE + MUL_ADD stages: PIPELINE (0 or 1) for the multipliers'
-//       extra register (the MULT18X18D pipeline register), MUL_ADD (0 when
+//       extra register (the MULT18X18D pipeline register; in fabric the
+//       register across pluecker_mul_lut's adder tree), MUL_ADD (0 when
 //       both multiplier operands fit 18 bits, i.e. COORD_BITS <= 17 and
 //       DIR_BITS <= 17; else 1 or 2) for the sums of 18x18 partial products
 //       of wider products on ECP5 (pluecker_mul); everything else is only
@@ -87,9 +92,9 @@ module pluecker_intersector #(
     // "lut" = pluecker_mul_lut (fabric only), "auto" = "lut" when both
     // COORD_BITS and DIR_BITS are at most MUL_LUT_MAX_BITS, else "dsp".
     parameter MUL_STYLE = "auto",
-    // 1: one more register after every product (the multipliers' PIPELINE:
-    // the MULT18X18D pipeline register, in fabric an output register), one
-    // more S2x stage and one more cycle of LATENCY.
+    // 1: one more register in every multiplier (its PIPELINE: the
+    // MULT18X18D pipeline register; in fabric a register across the middle
+    // of the adder tree), one more S2x stage and one more cycle of LATENCY.
     parameter int PIPELINE = 0,
     // 1: also compute the strict test (out_strict_o); needs CONSERVATIVE = 1
     parameter bit TERNARY = 0
@@ -304,14 +309,18 @@ module pluecker_intersector #(
   assign out_valid_o = occ_q[0];
 
   // -------------------------------------------------------------------------
-  // S0: input registers (no reset, no enable)
+  // S0: subtract from the ports into the input registers (no reset, no
+  // enable)
+  //   A_i = n_i ? O_i - HI_i : LO_i - O_i      (entry plane)
+  //   B_i = n_i ? O_i - LO_i : HI_i - O_i      (exit plane)
+  //   G_i = n_i ? HI_i - E_i : E_i - LO_i      (end test: G_i >= 0)
   // -------------------------------------------------------------------------
   logic [TAG_BITS-1:0] tag0_q;
   logic [2:0][D-1:0] dir0_q;
   logic endv0_q;
-  // Operands chosen by the class before the S0 registers (one LUT level from
-  // the ports), so that S1 is a bare subtract.
-  logic [2:0][C-1:0] al0_q, ar0_q, bl0_q, br0_q, gl0_q, gr0_q;
+  logic [2:0][WA-1:0] a0_q, b0_q;
+  logic [2:0] end_in0_q;
+  logic [2:0] end_in20_q;  // G_i >= 2 (the strict end test)
 
   always_ff @(posedge clk_i) begin
     tag0_q  <= in_tag_i;
@@ -325,39 +334,36 @@ module pluecker_intersector #(
     wire [C-1:0] lo = box_min_i[i*C+:C];
     wire [C-1:0] hi = box_max_i[i*C+:C];
     wire [C-1:0] e = ray_end_i[i*C+:C];
+    // The operands the class selects (one LUT level), sign-extended.
+    wire [C-1:0] al0_d = n ? o : lo;
+    wire [C-1:0] ar0_d = n ? hi : o;
+    wire [C-1:0] bl0_d = n ? o : hi;
+    wire [C-1:0] br0_d = n ? lo : o;
+    wire [C-1:0] gl0_d = n ? hi : e;
+    wire [C-1:0] gr0_d = n ? e : lo;
+    wire signed [WA-1:0] al = {al0_d[C-1], al0_d};
+    wire signed [WA-1:0] ar = {ar0_d[C-1], ar0_d};
+    wire signed [WA-1:0] bl = {bl0_d[C-1], bl0_d};
+    wire signed [WA-1:0] br = {br0_d[C-1], br0_d};
+    wire signed [WA-1:0] gl = {gl0_d[C-1], gl0_d};
+    wire signed [WA-1:0] gr = {gr0_d[C-1], gr0_d};
+    wire signed [WA-1:0] g = gl - gr;
     always_ff @(posedge clk_i) begin
-      al0_q[i] <= n ? o : lo;
-      ar0_q[i] <= n ? hi : o;
-      bl0_q[i] <= n ? o : hi;
-      br0_q[i] <= n ? lo : o;
-      gl0_q[i] <= n ? hi : e;
-      gr0_q[i] <= n ? e : lo;
+      a0_q[i] <= al - ar;
+      b0_q[i] <= bl - br;
+      end_in0_q[i] <= !g[WA-1];
+      end_in20_q[i] <= !g[WA-1] && (|g[WA-2:1]);
     end
   end
 
   // -------------------------------------------------------------------------
-  // S1: subtract (the S0 registers hold the operands the class selected)
-  //   A_i = n_i ? O_i - HI_i : LO_i - O_i      (entry plane)
-  //   B_i = n_i ? O_i - LO_i : HI_i - O_i      (exit plane)
-  //   G_i = n_i ? HI_i - E_i : E_i - LO_i      (end test: G_i >= 0)
+  // S1: the multipliers' input registers (inside them), and beside them the
+  // margin's magnitudes and D_i + D_j + 1
   // -------------------------------------------------------------------------
-  logic [2:0][WA-1:0] a_d, b_d;
-  logic [2:0] end_in_d;
-  logic [2:0] end_in2_d;  // G_i >= 2 (the strict end test)
-
-  for (genvar i = 0; i < 3; i++) begin : g_sub
-    wire signed [WA-1:0] al = {al0_q[i][C-1], al0_q[i]};
-    wire signed [WA-1:0] ar = {ar0_q[i][C-1], ar0_q[i]};
-    wire signed [WA-1:0] bl = {bl0_q[i][C-1], bl0_q[i]};
-    wire signed [WA-1:0] br = {br0_q[i][C-1], br0_q[i]};
-    wire signed [WA-1:0] gl = {gl0_q[i][C-1], gl0_q[i]};
-    wire signed [WA-1:0] gr = {gr0_q[i][C-1], gr0_q[i]};
-    wire signed [WA-1:0] g = gl - gr;
-    assign a_d[i] = al - ar;
-    assign b_d[i] = bl - br;
-    assign end_in_d[i] = !g[WA-1];
-    assign end_in2_d[i] = !g[WA-1] && (|g[WA-2:1]);
-  end
+  wire [2:0][WA-1:0] a_d = a0_q;
+  wire [2:0][WA-1:0] b_d = b0_q;
+  wire [2:0] end_in_d = end_in0_q;
+  wire [2:0] end_in2_d = end_in20_q;
 
   // D_i + D_j + 1 of pair k.
   logic [5:0][WDD-1:0] dd_d;
@@ -413,7 +419,7 @@ module pluecker_intersector #(
   for (genvar k = 0; k < 6; k++) begin : g_mul
     localparam int I = pair_i(k);
     localparam int J = pair_j(k);
-    // Operands from the S1 logic (a_d, b_d, dir0_q), registered inside the
+    // Operands from the S0 registers (a_d, b_d, dir0_q), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
     // Same ports and latency in both styles.
     if (MUL_LUT) begin : g_lut

@@ -21,8 +21,12 @@
 //           whose rows start k rows higher leaves the low k bits of the
 //           left node as they are: each adder is only as wide as the
 //           overlap plus its growth, never the full product width.
-//   edge 2  p_q <= root of the tree          (as a DSP's output register)
-//   edge 3  PIPELINE = 1 only: one more output register.
+//   edge 2  PIPELINE = 1 only: the nodes of tree level PL = ceil(LV/2)
+//           are registered (the tree cut in the middle, so each of the two
+//           clock periods holds about half of its adders; a register after
+//           the product would leave the whole tree in one period)
+//   edge 2  (edge 3 with PIPELINE) p_q <= root of the tree (as a DSP's
+//           output register)
 //
 // With b_i's top bit tied to zero (a non-negative operand, as the
 // intersector's directions are), the subtracted row is constant zero and
@@ -45,6 +49,7 @@ module pluecker_mul_lut #(
 
   localparam int W = WA + WB;  // product bits
   localparam int LV = $clog2(WB);  // tree levels above the rows
+  localparam int PL = (LV + 1) / 2;  // PIPELINE: the registered level (1..LV)
 
   // Rows covered by node g of level l: rows g*2^l .. min((g+1)*2^l, WB) - 1.
   function automatic int rows_of(input int l, input int g);
@@ -74,17 +79,25 @@ module pluecker_mul_lut #(
   end
 
   // Node g of level l is g_lvl[l].g_node[g].v, width_of(l, g) bits (one
-  // signal per node, read by its parent only).
+  // signal per node, read by its parent only): its sum c, registered at
+  // level PL with PIPELINE.
   for (genvar l = 0; l <= LV; l++) begin : g_lvl
     for (genvar g = 0; g < (WB + (1 << l) - 1) >> l; g++) begin : g_node
       localparam int WD = width_of(l, g);
-      wire [WD-1:0] v;
+      wire [WD-1:0] c, v;
+      if (PIPELINE && l == PL) begin : g_reg
+        logic [WD-1:0] v_q;
+        always_ff @(posedge clk_i) v_q <= c;
+        assign v = v_q;
+      end else begin : g_wire
+        assign v = c;
+      end
       if (l == 0) begin : g_row
         // Row g (the sign row too: the adder tree subtracts it).
-        assign v = row_q[g];
+        assign c = row_q[g];
       end else if (rows_of(l - 1, 2 * g + 1) == 0) begin : g_pass
         // No right child: the left child is this node (same width).
-        assign v = g_lvl[l-1].g_node[2*g].v;
+        assign c = g_lvl[l-1].g_node[2*g].v;
       end else begin : g_add
         localparam int K = 1 << (l - 1);  // the right child starts K rows up
         localparam int WL = width_of(l - 1, 2 * g);
@@ -96,7 +109,7 @@ module pluecker_mul_lut #(
         wire signed [WR-1:0] right = g_lvl[l-1].g_node[2*g+1].v;
         wire signed [WL-K-1:0] hi = left[WL-1:K];
         wire signed [WS-1:0] s = SUB ? WS'(hi) - WS'(right) : WS'(hi) + WS'(right);
-        assign v = {s, left[K-1:0]};
+        assign c = {s, left[K-1:0]};
       end
     end
   end
@@ -107,13 +120,7 @@ module pluecker_mul_lut #(
     p_q <= g_lvl[LV].g_node[0].v;
   end
 
-  if (PIPELINE) begin : g_pipe
-    logic signed [W-1:0] p2_q;
-    always_ff @(posedge clk_i) p2_q <= p_q;
-    assign p_o = p2_q;
-  end else begin : g_nopipe
-    assign p_o = p_q;
-  end
+  assign p_o = p_q;
 
 endmodule
 

@@ -117,6 +117,9 @@ _EXTRA_STAGE = (
     "    if (v5_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= res5_q;\n  end")
 _EXTRA_STAGE_PTR = (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      if (v5_q) wr_ptr_q <= wr_ptr_q + 1'b1;")
 
+CASCADE_RTL = "rtl/pluecker_cascade.sv"
+CASCADE_TB = "cocotb:tb/pluecker_cascade/test_pluecker_cascade.py::test_pluecker_cascade[n2_8x8_to_16x16]"
+
 MUTANTS: list[Mutant] = [
     # --- RTL datapath --------------------------------------------------------
     Mutant("rtl-margin-plus-one", "RTL: the margin's +1 dropped (D_i + D_j + 1 -> D_i + D_j)",
@@ -139,16 +142,16 @@ MUTANTS: list[Mutant] = [
            ["harness:8x8n:boundary:20000"]),
     *[_class_rtl(k) for k in range(8)],
     Mutant("rtl-entry-plane-pos", "RTL: entry plane of positive axes from HI (A_i = HI_i - O_i)",
-           [(RTL, "al0_q[i] <= n ? o : lo;", "al0_q[i] <= n ? o : hi;")],
+           [(RTL, "wire [C-1:0] al0_d = n ? o : lo;", "wire [C-1:0] al0_d = n ? o : hi;")],
            ["harness:6x6:boundary:20000"]),
     Mutant("rtl-exit-plane-neg", "RTL: exit plane of negative axes from HI (B_i = O_i - HI_i)",
-           [(RTL, "br0_q[i] <= n ? lo : o;", "br0_q[i] <= n ? hi : o;")],
+           [(RTL, "wire [C-1:0] br0_d = n ? lo : o;", "wire [C-1:0] br0_d = n ? hi : o;")],
            ["harness:6x6:boundary:20000"]),
     Mutant("rtl-end-plane-pos", "RTL: end test of positive axes against HI instead of LO",
-           [(RTL, "gr0_q[i] <= n ? e : lo;", "gr0_q[i] <= n ? e : hi;")],
+           [(RTL, "wire [C-1:0] gr0_d = n ? e : lo;", "wire [C-1:0] gr0_d = n ? e : hi;")],
            ["harness:6x6:boundary:20000"]),
     Mutant("rtl-end-plane-neg", "RTL: end test of negative axes against LO instead of HI",
-           [(RTL, "gl0_q[i] <= n ? hi : e;", "gl0_q[i] <= n ? lo : e;")],
+           [(RTL, "wire [C-1:0] gl0_d = n ? hi : e;", "wire [C-1:0] gl0_d = n ? lo : e;")],
            ["harness:6x6:boundary:20000"]),
     Mutant("rtl-end-valid-ignored", "RTL: the end test applied to unbounded rays too",
            [(RTL, "ok2_q  <= (!endv1_q || (&end_in1_q)) && !(|sb_d);", "ok2_q  <= (&end_in1_q) && !(|sb_d);")],
@@ -182,6 +185,13 @@ MUTANTS: list[Mutant] = [
            ["harness:6x6:boundary:2000",
             "cocotb:tb/pluecker_intersector/test_pluecker_intersector.py::test_pluecker_intersector[c6_d6_cons]"
             "@throughput"]),
+    # The cascade's escalation path (rtl/pluecker_cascade.sv).
+    Mutant("cascade-slot-overwrite", "cascade: an uncertain answer loaded into a full escalation slot (lost)",
+           [(CASCADE_RTL, "wire slot_load = uncertain[l] && slot_free;", "wire slot_load = uncertain[l];")],
+           [CASCADE_TB]),
+    Mutant("cascade-wide-input-overwrite", "cascade: a slot granted while the wide unit's input register is full",
+           [(CASCADE_RTL, "wire wq_free = !wq_v_q || w_in_ready;", "wire wq_free = 1'b1;")],
+           [CASCADE_TB]),
     # The handshake mutants of the formal harness (bounded check).
     Mutant("formal-credit-leak", "RTL: a credit returned on every output handshake, also with an input",
            [(RTL, "if (give && !take) credits_d = {credits_q[CT-2:0], 1'b1};",

@@ -46,9 +46,10 @@ computes it for the global unit) and box tests per second per chip
 (units x CHILDREN x Fmax).
 
 --array NDSPxNLUT places pluecker_array (fpga/ooc_array_wrapper.sv; `make
-chip`), --cascade N:CxD:WCxWD pluecker_cascade: N narrow TERNARY lanes and
-the wide unit they escalate to (fpga/ooc_cascade_wrapper.sv); results in
-out/synth/array_*/ and out/synth/cascade_<N>_<C>x<D>_<WC>x<WD>/.
+chip`), --cascade [M*]N:CxD:WCxWD M pluecker_cascades (default 1): N narrow
+TERNARY lanes each and the wide unit they escalate to
+(fpga/ooc_cascade_wrapper.sv); results in out/synth/array_*/ and
+out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>/.
 """
 from __future__ import annotations
 
@@ -278,12 +279,12 @@ def run_yosys(yosys: str, sources: list[Path], design: Design, outdir: Path) -> 
 # nextpnr
 
 def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int,
-                freq: float, top: str = TOP) -> list[str]:
+                freq: float, top: str = TOP, router: str = "router1") -> list[str]:
     """nextpnr command line, run with rundir as working directory."""
     return [nextpnr, DEVICE_FLAG, "--package", PACKAGE, "--speed", str(speed),
             "--seed", str(seed), "--json", rel(netlist, rundir), "--top", top,
             "--out-of-context", "--freq", f"{freq:g}", "--timing-allow-fail",
-            "--report", "report.json", "-l", "nextpnr.log", "-q"]
+            "--router", router, "--report", "report.json", "-l", "nextpnr.log", "-q"]
 
 
 _SUFFIX = re.compile(r"\$CCU2_(COMB|FF)\d*$")
@@ -475,6 +476,28 @@ def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
     return fig
 
 
+def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
+    """A placed chip of cascades: its own box tests per second (its lanes x
+    its median Fmax) beside the one-cascade extrapolation (the summary of
+    the same cascade placed alone, out/cascade_<N>_..., when there is one)."""
+    p, f = design.params, design.fields
+    lanes = p["N_CASCADES"] * p["N_NARROW"]
+    placed = {sp: round(st["median"] * 1e6 * lanes) for sp, st in by_speed.items()}
+    fig = {"cascades": p["N_CASCADES"], "lanes": lanes, "box_tests_per_s": placed}
+    one = out / (f"cascade_{p['N_NARROW']}_{f['coord_bits']}x{f['dir_bits']}_{f['wide_coord_bits']}x"
+                 f"{f['wide_dir_bits']}" + (f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""))
+    try:
+        unit = json.loads((one / "summary.json").read_text())
+    except (OSError, ValueError):
+        return fig
+    ext = unit.get("box_tests_per_s_per_chip", {})
+    fig["extrapolation"] = {"from": str(one), "units_per_chip": unit.get("units_per_chip"),
+                            "box_tests_per_s_per_chip": ext,
+                            "fmax_mhz": {sp: st["median"] for sp, st in unit.get("fmax_mhz", {}).items()}}
+    fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
+    return fig
+
+
 def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict) -> dict:
     by_speed: dict[str, dict] = {}
     limits: dict[str, dict] = {}
@@ -498,6 +521,7 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "latency": row.get("latency"), "fifo_depth": row.get("fifo_depth"),
         "device": DEVICE, "package": PACKAGE, "out_of_context": True,
         "target_mhz": args.freq,
+        "router": args.router,
         "tools": tools,
         "yosys_seconds": ys["seconds"],
         "utilisation": u,
@@ -510,6 +534,8 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
     }
     if design.fields.get("unit") == "array":
         summary["array"] = array_figures(design, by_speed, Path(args.out))
+    if design.fields.get("unit") == "cascade" and design.params["N_CASCADES"] > 1:
+        summary["cascade_chip"] = cascade_chip_figures(design, by_speed, Path(args.out))
     with open(base / "summary.json", "w") as f:
         json.dump(summary, f, indent=2)
         f.write("\n")
@@ -656,38 +682,44 @@ def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
 CASCADE_WRAPPER = ROOT / "fpga" / "ooc_cascade_wrapper.sv"
 
 
-def parse_cascade(text: str) -> tuple[int, int, int, int, int]:
-    """'N:CxD:WCxWD': pluecker_cascade of N narrow CxD lanes and one wide
-    WCxWD unit, e.g. 2:8x8:16x16."""
-    m = re.fullmatch(r"(\d+):(\d+)x(\d+):(\d+)x(\d+)", text.strip())
+def parse_cascade(text: str) -> tuple[int, int, int, int, int, int]:
+    """'[M*]N:CxD:WCxWD': M (default 1) pluecker_cascades, each of N narrow
+    CxD lanes and one wide WCxWD unit, e.g. 2:8x8:16x16 or 11*2:8x8:16x16."""
+    m = re.fullmatch(r"(?:(\d+)\*)?(\d+):(\d+)x(\d+):(\d+)x(\d+)", text.strip())
     if not m:
-        raise FlowError(f"--cascade '{text}': expected N:CxD:WCxWD, e.g. 2:8x8:16x16")
-    n, nc, nd, wc, wd = (int(g) for g in m.groups())
+        raise FlowError(f"--cascade '{text}': expected [M*]N:CxD:WCxWD, e.g. 2:8x8:16x16 or 11*2:8x8:16x16")
+    count = int(m.group(1)) if m.group(1) else 1
+    n, nc, nd, wc, wd = (int(g) for g in m.groups()[1:])
+    if count < 1:
+        raise FlowError(f"--cascade '{text}': at least one cascade")
     if n < 1:
         raise FlowError(f"--cascade '{text}': at least one narrow lane")
     if wc < nc or wd < nd:
         raise FlowError(f"--cascade '{text}': the wide format must be at least as wide as the narrow one")
-    return n, nc, nd, wc, wd
+    return count, n, nc, nd, wc, wd
 
 
-def cascade_design(n: int, nc: int, nd: int, wc: int, wd: int, args) -> Design:
-    """pluecker_cascade: N narrow TERNARY units and one wide unit, each with
-    its "auto" multipliers (the port contract's rows give the MULT18X18D
-    count); N box tests per clock (the lanes), the wide unit's work extra."""
+def cascade_design(count: int, n: int, nc: int, nd: int, wc: int, wd: int, args) -> Design:
+    """count pluecker_cascades (independent; a chip of them when count > 1),
+    each of N narrow TERNARY units and one wide unit with their "auto"
+    multipliers (the port contract's rows give the MULT18X18D count);
+    count x N box tests per clock (the lanes), the wide units' work extra."""
     try:
         narrow, wide = contract.row(nc, nd, "auto", args.pipeline), contract.row(wc, wd, "auto", args.pipeline)
     except contract.ContractError as e:
         raise FlowError(str(e)) from None
     row = {"latency": narrow["latency"], "fifo_depth": narrow["fifo_depth"],
-           "mult18x18d": n * narrow["mult18x18d"] + wide["mult18x18d"],
-           "multiplier": f"{n} narrow units ({narrow['multiplier']}), one wide ({wide['multiplier']})"}
-    name = f"cascade_{n}_{nc}x{nd}_{wc}x{wd}" + (f"_p{args.pipeline}" if args.pipeline else "")
-    params = {"N_NARROW": n, "NARROW_COORD_BITS": nc, "NARROW_DIR_BITS": nd, "WIDE_COORD_BITS": wc,
-              "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline}
+           "mult18x18d": count * (n * narrow["mult18x18d"] + wide["mult18x18d"]),
+           "multiplier": (f"{count} x " if count > 1 else "")
+           + f"{n} narrow units ({narrow['multiplier']}), one wide ({wide['multiplier']})"}
+    many = f"{count}x" if count > 1 else ""
+    name = f"cascade_{many}{n}_{nc}x{nd}_{wc}x{wd}" + (f"_p{args.pipeline}" if args.pipeline else "")
+    params = {"N_CASCADES": count, "N_NARROW": n, "NARROW_COORD_BITS": nc, "NARROW_DIR_BITS": nd,
+              "WIDE_COORD_BITS": wc, "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline}
     return Design(name, "ooc_cascade_wrapper", CASCADE_WRAPPER, "pluecker_cascade", params, row,
-                  {"config": f"cascade {n}x{nc}x{nd}>{wc}x{wd}", "unit": "cascade", "name": name,
+                  {"config": f"cascade {many}{n}x{nc}x{nd}>{wc}x{wd}", "unit": "cascade", "name": name,
                    "coord_bits": nc, "dir_bits": nd, "wide_coord_bits": wc, "wide_dir_bits": wd,
-                   "pipeline": args.pipeline, "n_narrow": n}, tests_per_clock=n)
+                   "pipeline": args.pipeline, "n_cascades": count, "n_narrow": n}, tests_per_clock=count * n)
 
 
 def design_of(spec: tuple, args) -> Design:
@@ -760,7 +792,8 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
                     rundir = base / "pnr" / f"speed{speed}_seed{seed}"
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                            "netlist": base / "netlist.json", "top": d.top,
-                           "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top)}
+                           "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
+                                               args.router)}
                     name = f"{d.name} speed{speed} seed{seed}"
                     pnr_jobs.append(jobs.Job(name, "synth:run_pnr", (job,)))
                     of_design[name] = d.name
@@ -797,6 +830,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--seeds", type=int, default=3, help="seeds 1..N per speed grade")
     p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
+    p.add_argument("--router", choices=("router1", "router2"), default="router1",
+                   help="nextpnr router (router2 converges where router1 stalls on a congested whole chip)")
     p.add_argument("--jobs", type=int, default=2,
                    help=f"Yosys or nextpnr runs at a time on this machine (max {MAX_PARALLEL})")
     p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")
@@ -811,8 +846,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                    help="NDSPxNLUT: pluecker_array of NDSP units with MULT18X18D and NLUT in fabric at "
                         "--coord-bits/--dir-bits (e.g. 13x0, 0x38, 1x1); box tests per clock = NDSP + NLUT")
     p.add_argument("--cascade", default=None,
-                   help="N:CxD:WCxWD: pluecker_cascade of N narrow TERNARY lanes at CxD escalating to one wide "
-                        "unit at WCxWD (e.g. 2:8x8:16x16); box tests per clock = N")
+                   help="[M*]N:CxD:WCxWD: M (default 1) pluecker_cascades of N narrow TERNARY lanes at CxD "
+                        "escalating to one wide unit at WCxWD (e.g. 2:8x8:16x16, or a chip of them: "
+                        "11*2:8x8:16x16); box tests per clock = M x N")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
     if args.local and args.unit != "fixed":

@@ -107,22 +107,23 @@ def test_array_smoke(tmp_path):
 
 
 def test_cascade_yosys(tmp_path):
-    """pluecker_cascade through Yosys (--cascade 2:8x8:16x16 --no-pnr): two
-    narrow TERNARY lanes with fabric multipliers and the shared wide 16/16
-    unit on MULT18X18D blocks, the port contract's counts (12 blocks: the
-    wide unit's alone), two box tests per clock."""
+    """Two pluecker_cascades through Yosys (--cascade 2*2:8x8:16x16
+    --no-pnr, the chip harness of several cascades): each two narrow TERNARY
+    lanes with fabric multipliers and a shared wide 16/16 unit on MULT18X18D
+    blocks, the port contract's counts (12 blocks a cascade: the wide
+    unit's alone)."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
-    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2:8x8:16x16",
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2*2:8x8:16x16",
                           "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --cascade failed:\n{res.stdout}\n{res.stderr}"
-    s = json.loads((tmp_path / "cascade_2_8x8_16x16" / "summary.json").read_text())
+    s = json.loads((tmp_path / "cascade_2x2_8x8_16x16" / "summary.json").read_text())
     import contract  # scripts/contract.py
     wide = contract.row(16, 16, "auto", 0)["mult18x18d"]
     assert contract.row(8, 8, "auto", 0)["mult18x18d"] == 0 and wide == 12
-    assert s["design"] == "pluecker_cascade" and s["n_narrow"] == 2, s
-    assert s["utilisation"]["MULT18X18D"] == wide, s["utilisation"]
+    assert s["design"] == "pluecker_cascade" and (s["n_cascades"], s["n_narrow"]) == (2, 2), s
+    assert s["utilisation"]["MULT18X18D"] == 2 * wide, s["utilisation"]
     assert s["utilisation"]["CCU2C"] > 0 and s["utilisation"]["LUT4"] > 0, s["utilisation"]
     bad = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2:12x12:10x10",
                           "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=600)
