@@ -214,7 +214,7 @@ sim-array-check: sim-array
 	$(ARRAY_SIM_BIN) check --n $(ARRAY_N) --kind all --ready 0.5 --valid 0.8 --reset-every 1000
 
 # ---- The cascade's harness (sim/cascade/) -------------------------------------
-# make sim-cascade         builds build/sim/cascade_<CASCADE_N>_<NC>x<ND>_<WC>x<WD>[_p1]/pluecker_sim_cascade:
+# make sim-cascade         builds build/sim/cascade_<CASCADE_N>_<NC>x<ND>_<WC>x<WD>[_p<P>]/pluecker_sim_cascade:
 #                          rtl/pluecker_cascade.sv with CASCADE_N narrow TERNARY lanes at
 #                          NARROW_COORD_BITS/NARROW_DIR_BITS and one wide unit at WIDE_COORD_BITS/WIDE_DIR_BITS
 # make sim-cascade-render  hardware-in-the-loop render of SCENE at SIM_SIZE as `pluecker cascade` renders it,
@@ -234,7 +234,7 @@ SIM_PIPELINE      ?= 0
 CASCADE_CHECK_N   ?= 200000
 CASCADE_NARROW     = $(NARROW_COORD_BITS)x$(NARROW_DIR_BITS)
 CASCADE_WIDE       = $(WIDE_COORD_BITS)x$(WIDE_DIR_BITS)
-CASCADE_SIM_DIR    = build/sim/cascade_$(CASCADE_N)_$(CASCADE_NARROW)_$(CASCADE_WIDE)$(if $(filter 1,$(SIM_PIPELINE)),_p1)
+CASCADE_SIM_DIR    = build/sim/cascade_$(CASCADE_N)_$(CASCADE_NARROW)_$(CASCADE_WIDE)$(if $(filter-out 0,$(SIM_PIPELINE)),_p$(SIM_PIPELINE))
 CASCADE_SIM_BIN    = $(CASCADE_SIM_DIR)/pluecker_sim_cascade
 CASCADE_SIM_VARS   = SIM_UNIT=cascade CASCADE_N=$(CASCADE_N) NARROW_COORD_BITS=$(NARROW_COORD_BITS) \
                      NARROW_DIR_BITS=$(NARROW_DIR_BITS) WIDE_COORD_BITS=$(WIDE_COORD_BITS) \

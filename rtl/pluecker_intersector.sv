@@ -45,9 +45,10 @@
 //       output register is the S2 register; or, by MUL_STYLE, the fabric
 //       multiplier pluecker_mul_lut with the same two register stages); in parallel |A_i| + |B_j| (in
 //       ones' complement form), origin test B_i >= 0, end test
-//   S2x PIPELINE + MUL_ADD stages: PIPELINE (0 or 1) for the multipliers'
-//       extra register (the MULT18X18D pipeline register; in fabric the
-//       register across pluecker_mul_lut's adder tree), MUL_ADD (0 when
+//   S2x PIPELINE + MUL_ADD stages: PIPELINE (0..2) for the multipliers'
+//       extra registers (1: the MULT18X18D pipeline register, in fabric the
+//       register across pluecker_mul_lut's adder tree; 2: also a fabric
+//       register after every product), MUL_ADD (0 when
 //       both multiplier operands fit 18 bits, i.e. COORD_BITS <= 17 and
 //       DIR_BITS <= 17; else 1 or 2) for the sums of 18x18 partial products
 //       of wider products on ECP5 (pluecker_mul); everything else is only
@@ -94,7 +95,9 @@ module pluecker_intersector #(
     parameter MUL_STYLE = "auto",
     // 1: one more register in every multiplier (its PIPELINE: the
     // MULT18X18D pipeline register; in fabric a register across the middle
-    // of the adder tree), one more S2x stage and one more cycle of LATENCY.
+    // of the adder tree), one more S2x stage and one more cycle of LATENCY;
+    // 2: also a fabric register after every product (so that the route out
+    // of a DSP column gets a whole period on a full chip), one more again.
     parameter int PIPELINE = 0,
     // 1: also compute the strict test (out_strict_o); needs CONSERVATIVE = 1
     parameter bit TERNARY = 0
@@ -141,7 +144,7 @@ module pluecker_intersector #(
     $error("pluecker_intersector: parameter TAG_BITS must be at least 1");
   end
   if (!PIPELINE_OK) begin : g_bad_pipeline
-    $error("pluecker_intersector: parameter PIPELINE must be 0 or 1");
+    $error("pluecker_intersector: parameter PIPELINE must be 0, 1 or 2");
   end
   if (!TERNARY_OK) begin : g_bad_ternary
     $error("pluecker_intersector: parameter TERNARY = 1 needs CONSERVATIVE = 1 (nearest has no margin)");
@@ -408,7 +411,7 @@ module pluecker_intersector #(
   logic [5:0][WM1-1:0] m1_d;
   logic [2:0] sb_d;
   logic [2:0] b2_d;  // B_i >= 2 (the strict origin test)
-  localparam bit MUL_PIPELINE = PIPELINE != 0;
+  localparam int MUL_PIPELINE = PIPELINE_OK ? PIPELINE : 0;
 
   for (genvar i = 0; i < 3; i++) begin : g_sign
     assign sb_d[i] = sb1_q[i];

@@ -107,14 +107,14 @@ module pluecker_local_child #(
     wire [WMA-1:0] dir_i_op = {1'b0, dir_i[I*D+:D]};
     wire [WMA-1:0] dir_j_op = {1'b0, dir_i[J*D+:D]};
     if (MUL_LUT) begin : g_lut
-      pluecker_mul_lut #(.WA(WMA), .WB(WMB), .PIPELINE(1'b0)) u_mul_b (
+      pluecker_mul_lut #(.WA(WMA), .WB(WMB), .PIPELINE(0)) u_mul_b (
           .clk_i(clk_i), .a_i(dir_i_op), .b_i({1'b0, ext_d[J]}), .p_o(pb_q[k]));
-      pluecker_mul_lut #(.WA(WMA), .WB(WMB), .PIPELINE(1'b0)) u_mul_a (
+      pluecker_mul_lut #(.WA(WMA), .WB(WMB), .PIPELINE(0)) u_mul_a (
           .clk_i(clk_i), .a_i(dir_j_op), .b_i({1'b0, ent_d[I]}), .p_o(pa_q[k]));
     end else begin : g_dsp
-      pluecker_mul #(.WA(WMA), .WB(WMB), .PIPELINE(1'b0), .ADD_STAGES(MUL_ADD)) u_mul_b (
+      pluecker_mul #(.WA(WMA), .WB(WMB), .PIPELINE(0), .ADD_STAGES(MUL_ADD)) u_mul_b (
           .clk_i(clk_i), .a_i(dir_i_op), .b_i({1'b0, ext_d[J]}), .p_o(pb_q[k]));
-      pluecker_mul #(.WA(WMA), .WB(WMB), .PIPELINE(1'b0), .ADD_STAGES(MUL_ADD)) u_mul_a (
+      pluecker_mul #(.WA(WMA), .WB(WMB), .PIPELINE(0), .ADD_STAGES(MUL_ADD)) u_mul_a (
           .clk_i(clk_i), .a_i(dir_j_op), .b_i({1'b0, ent_d[I]}), .p_o(pa_q[k]));
     end
   end

@@ -277,10 +277,10 @@ module pluecker_local_frame #(
     localparam int I = pair_i(k);
     localparam int J = pair_j(k);
     if (MUL_LUT) begin : g_lut
-      pluecker_mul_lut #(.WA(WF), .WB(WDG), .PIPELINE(1'b0)) u_mul (
+      pluecker_mul_lut #(.WA(WF), .WB(WDG), .PIPELINE(0)) u_mul (
           .clk_i(clk_i), .a_i(delta_d[I]), .b_i({1'b0, dg1_q[J]}), .p_o(prod_q[k]));
     end else begin : g_dsp
-      pluecker_mul #(.WA(WF), .WB(WDG), .PIPELINE(1'b0), .ADD_STAGES(MUL_ADD)) u_mul (
+      pluecker_mul #(.WA(WF), .WB(WDG), .PIPELINE(0), .ADD_STAGES(MUL_ADD)) u_mul (
           .clk_i(clk_i), .a_i(delta_d[I]), .b_i({1'b0, dg1_q[J]}), .p_o(prod_q[k]));
     end
   end

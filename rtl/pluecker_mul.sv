@@ -2,6 +2,12 @@
 // Registered signed multiply for the intersector's 12 products:
 //   p_o = a_i * b_i, 2 + PIPELINE + ADD_STAGES clock edges after a_i, b_i.
 //
+// PIPELINE (0..2): 1 clocks the MULT18X18D's internal pipeline register;
+// 2 also registers every block's output in fabric (in front of the adder
+// stages of split operands, or as the product itself), so that the route
+// from a DSP column into the fabric gets a whole clock period (on a full
+// chip the fabric next to the columns is crowded and that route is long).
+//
 // ADD_STAGES must be the number of operands wider than 18 bits (0, 1 or 2;
 // elaboration fails otherwise), so that the latency is a function of the
 // widths alone, the same on every target. Operands are at most 35 bits,
@@ -40,7 +46,7 @@
 module pluecker_mul #(
     parameter int WA = 17,
     parameter int WB = 17,
-    parameter bit PIPELINE = 0,
+    parameter int PIPELINE = 0,
     parameter int ADD_STAGES = 0
 ) (
     input  wire                    clk_i,
@@ -54,6 +60,9 @@ module pluecker_mul #(
 
   if (ADD_STAGES != SPLIT_A + SPLIT_B) begin : g_bad_add_stages
     $error("pluecker_mul: ADD_STAGES must equal the number of operands wider than 18 bits");
+  end
+  if (PIPELINE < 0 || PIPELINE > 2) begin : g_bad_pipeline
+    $error("pluecker_mul: parameter PIPELINE must be 0, 1 or 2");
   end
   if (WA > 35 || WB > 35 || WA + WB > 70 || WA < 2 || WB < 2) begin : g_bad_width
     $error("pluecker_mul: operand widths must be 2..35 bits, 70 bits together");
@@ -92,7 +101,7 @@ module pluecker_mul #(
       MULT18X18D #(
           .REG_INPUTA_CLK  ("CLK0"),
           .REG_INPUTB_CLK  ("CLK0"),
-          .REG_PIPELINE_CLK(PIPELINE ? "CLK0" : "NONE"),
+          .REG_PIPELINE_CLK(PIPELINE != 0 ? "CLK0" : "NONE"),
           .REG_OUTPUT_CLK  ("CLK0"),
           .GSR             ("DISABLED"),
           .RESETMODE       ("SYNC")
@@ -117,7 +126,14 @@ module pluecker_mul #(
           .P24(p36[24]), .P25(p36[25]), .P26(p36[26]), .P27(p36[27]), .P28(p36[28]), .P29(p36[29]),
           .P30(p36[30]), .P31(p36[31]), .P32(p36[32]), .P33(p36[33]), .P34(p36[34]), .P35(p36[35])
       );
-      assign pp[k] = p36;
+      if (PIPELINE > 1) begin : g_out_reg
+        // The block's output registered once more, in fabric.
+        logic [35:0] p36_q;
+        always_ff @(posedge clk_i) p36_q <= p36;
+        assign pp[k] = p36_q;
+      end else begin : g_out_wire
+        assign pp[k] = p36;
+      end
     end else begin : g_unused
       assign pp[k] = '0;
     end
@@ -147,14 +163,15 @@ module pluecker_mul #(
   begin : g_generic
     logic signed [WA-1:0] a_q;
     logic signed [WB-1:0] b_q;
-    logic signed [W-1:0] m_q, p_q;
+    logic signed [W-1:0] m_q, p_q, p2_q;
     always_ff @(posedge clk_i) begin
       a_q <= a_i;
       b_q <= b_i;
       m_q <= a_q * b_q;
       p_q <= m_q;
+      p2_q <= p_q;
     end
-    wire signed [W-1:0] p_reg = PIPELINE ? p_q : m_q;
+    wire signed [W-1:0] p_reg = (PIPELINE > 1) ? p2_q : (PIPELINE != 0) ? p_q : m_q;
     // The ECP5 build's adder stages, as plain delay.
     if (ADD_STAGES == 0) begin : g_nodelay
       assign p_o = p_reg;

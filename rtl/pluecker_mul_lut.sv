@@ -21,12 +21,14 @@
 //           whose rows start k rows higher leaves the low k bits of the
 //           left node as they are: each adder is only as wide as the
 //           overlap plus its growth, never the full product width.
-//   edge 2  PIPELINE = 1 only: the nodes of tree level PL = ceil(LV/2)
+//   edge 2  PIPELINE >= 1 only: the nodes of tree level PL = ceil(LV/2)
 //           are registered (the tree cut in the middle, so each of the two
 //           clock periods holds about half of its adders; a register after
 //           the product would leave the whole tree in one period)
 //   edge 2  (edge 3 with PIPELINE) p_q <= root of the tree (as a DSP's
 //           output register)
+//   edge 4  PIPELINE = 2 only: p_q registered once more (the latency of
+//           pluecker_mul's fabric register after the block)
 //
 // With b_i's top bit tied to zero (a non-negative operand, as the
 // intersector's directions are), the subtracted row is constant zero and
@@ -36,13 +38,16 @@
 module pluecker_mul_lut #(
     parameter int WA = 17,
     parameter int WB = 17,
-    parameter bit PIPELINE = 0
+    parameter int PIPELINE = 0
 ) (
     input  wire                    clk_i,
     input  wire signed [WA-1:0]    a_i,
     input  wire signed [WB-1:0]    b_i,
     output wire signed [WA+WB-1:0] p_o
 );
+  if (PIPELINE < 0 || PIPELINE > 2) begin : g_bad_pipeline
+    $error("pluecker_mul_lut: parameter PIPELINE must be 0, 1 or 2");
+  end
   if (WA < 2 || WB < 2) begin : g_bad_width
     $error("pluecker_mul_lut: parameters WA and WB must be at least 2");
   end
@@ -85,7 +90,7 @@ module pluecker_mul_lut #(
     for (genvar g = 0; g < (WB + (1 << l) - 1) >> l; g++) begin : g_node
       localparam int WD = width_of(l, g);
       wire [WD-1:0] c, v;
-      if (PIPELINE && l == PL) begin : g_reg
+      if (PIPELINE != 0 && l == PL) begin : g_reg
         logic [WD-1:0] v_q;
         always_ff @(posedge clk_i) v_q <= c;
         assign v = v_q;
@@ -120,7 +125,13 @@ module pluecker_mul_lut #(
     p_q <= g_lvl[LV].g_node[0].v;
   end
 
-  assign p_o = p_q;
+  if (PIPELINE > 1) begin : g_out_reg
+    logic signed [W-1:0] p2_q;
+    always_ff @(posedge clk_i) p2_q <= p_q;
+    assign p_o = p2_q;
+  end else begin : g_out_wire
+    assign p_o = p_q;
+  end
 
 endmodule
 

@@ -113,11 +113,11 @@ for pair in "$LO $LO" "10 12" "16 16" "$HI $HI" "$LO $HI" "$HI $LO"; do
         done
     done
 done
-# Both multiplier styles at a narrow and a wide width, both PIPELINE values.
+# Both multiplier styles at a narrow and a wide width, every PIPELINE value.
 for style in lut dsp; do
     for pair in "$LO $LO" "16 16"; do
         read -r c d <<< "$pair"
-        for pipe in 0 1; do
+        for pipe in 0 1 2; do
             lint_clean "verilator -Wall C=$c D=$d MUL_STYLE=$style PIPELINE=$pipe ASSERT_ON" \
                 -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GMUL_STYLE="\"$style\"" -GPIPELINE="$pipe"
         done
@@ -126,8 +126,10 @@ done
 # PIPELINE with the wide products' adder stages (S2x stages 2 and 3).
 for pair in "$LO $HI" "$HI $HI"; do
     read -r c d <<< "$pair"
-    lint_clean "verilator -Wall C=$c D=$d PIPELINE=1 ASSERT_ON" \
-        -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GPIPELINE=1
+    for pipe in 1 2; do
+        lint_clean "verilator -Wall C=$c D=$d PIPELINE=$pipe ASSERT_ON" \
+            -DASSERT_ON --assert -GCOORD_BITS="$c" -GDIR_BITS="$d" -GPIPELINE="$pipe"
+    done
 done
 # The ternary answer (TERNARY = 1, out_strict_o) at the corners and with
 # the S2x stages.
@@ -223,7 +225,7 @@ reject() {  # <what> <grep pattern> <-G arguments...>
     refused "$what" "$pattern" "$@" --top-module "$TOP" "${SOURCES[@]}"
 }
 for bad in "COORD_BITS=$((LO - 1))" "COORD_BITS=$((HI + 1))" "DIR_BITS=$((LO - 1))" "DIR_BITS=$((HI + 1))" \
-    "TAG_BITS=0" "PIPELINE=2" "PIPELINE=-1"; do
+    "TAG_BITS=0" "PIPELINE=3" "PIPELINE=-1"; do
     reject "verilator rejects $bad" "${bad%%=*}" -G"$bad"
 done
 reject 'verilator rejects MUL_STYLE="fast"' MUL_STYLE -GMUL_STYLE='"fast"'

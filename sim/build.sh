@@ -30,14 +30,14 @@
 # least the narrow widths), all within the port contract's limits, at
 # SIM_TAG_BITS and SIM_PIPELINE; MODE must be conservative and COORD_BITS /
 # DIR_BITS are not used; SIM_OUT defaults to
-# build/sim/cascade_<N>_<NC>x<ND>_<WC>x<WD>[_p1] (_p1: SIM_PIPELINE=1).
+# build/sim/cascade_<N>_<NC>x<ND>_<WC>x<WD>[_p<P>] (_p<P>: SIM_PIPELINE=P, 1 or 2).
 #
 # Settings (environment): COORD_BITS, DIR_BITS (the port contract's limits,
 # 6..24; default 16),
 # MODE (conservative|nearest, default conservative), SIM_TAG_BITS (default 8),
 # MODEL_BUILD (default build/model), SIM_RTL (default
 # rtl/pluecker_intersector.sv), SIM_OUT (default build/sim/<C>x<D>[_nearest]),
-# SIM_JOBS (default 2), SIM_PIPELINE=1 (the multipliers' extra register),
+# SIM_JOBS (default 2), SIM_PIPELINE=1 or 2 (the multipliers' extra registers),
 # SIM_ASSERT=1 (compile the RTL's ASSERT_ON properties
 # into the model; slower), SIM_DIRECT_EVAL=0 (plain eval(), see
 # sim/rtl_intersector.cpp), SIM_VFLAGS (extra Verilator flags). Verilator is
@@ -150,7 +150,7 @@ case "$unit" in
     NL=$((10#$NL))
     ((ND + NL >= 1 && ND + NL <= 256)) ||
       die "ARRAY_DSP + ARRAY_LUT = $((ND + NL)) is not in 1..256 (the array needs at least one unit)"
-    [[ "$P" =~ ^[01]$ ]] || die "SIM_PIPELINE=$P is not 0 or 1"
+    [[ "$P" =~ ^[012]$ ]] || die "SIM_PIPELINE=$P is not 0, 1 or 2"
     array_style_ok "$ND" dsp ARRAY_DSP "$P"
     array_style_ok "$NL" lut ARRAY_LUT "$P"
     default_out="build/sim/array_${ND}x${NL}_${C}x${D}${suffix}"
@@ -173,7 +173,7 @@ case "$unit" in
       val="${v#*=}"
       is_int_in "$val" "$lo" "$hi" || die "${v%%=*}=$val is not an integer in $lo..$hi (the port contract's widths)"
     done
-    [[ "$P" =~ ^[01]$ ]] || die "SIM_PIPELINE=$P is not 0 or 1"
+    [[ "$P" =~ ^[012]$ ]] || die "SIM_PIPELINE=$P is not 0, 1 or 2"
     N=$((10#$N))
     NC=$((10#$NC))
     ND=$((10#$ND))
@@ -182,7 +182,7 @@ case "$unit" in
     ((WC >= NC && WD >= ND)) ||
       die "the wide unit (WIDE_COORD_BITS=$WC WIDE_DIR_BITS=$WD) is narrower than the narrow lanes" \
         "(NARROW_COORD_BITS=$NC NARROW_DIR_BITS=$ND): the wide widths must be at least the narrow ones"
-    default_out="build/sim/cascade_${N}_${NC}x${ND}_${WC}x${WD}$([[ $P == 1 ]] && echo _p1 || true)"
+    default_out="build/sim/cascade_${N}_${NC}x${ND}_${WC}x${WD}$([[ $P != 0 ]] && echo "_p$P" || true)"
     unit_args=(-DSIM_CASCADE_N="$N" -DSIM_NARROW_COORD_BITS="$NC" -DSIM_NARROW_DIR_BITS="$ND"
       -DSIM_WIDE_COORD_BITS="$WC" -DSIM_WIDE_DIR_BITS="$WD")
     binary=pluecker_sim_cascade

@@ -105,8 +105,8 @@ TEST(Contract, RefusesWhatTheRtlRefuses) {
     c.tag_bits = 0;
     refuses(c, "TAG_BITS = 0");
     c = RtlConfig{};
-    c.pipeline = 2;
-    refuses(c, "PIPELINE = 2 is outside 0..1");
+    c.pipeline = 3;
+    refuses(c, "PIPELINE = 3 is outside 0..2");
     c = RtlConfig{};
     c.mul_style = MulStyle::Lut;
     c.coord_bits = 18;
@@ -286,10 +286,10 @@ TEST(Contract, ClassesPartitionEveryConfiguration) {
                     EXPECT_EQ(in->fifo_depth, pc.fifo_depth());
                     EXPECT_EQ(in->dsp_blocks, pc.dsp_blocks());
                 }
-    // auto and dsp: every width pair; lut: both widths up to 17; two PIPELINE values.
-    EXPECT_EQ(valid, std::size_t{2} * (19 * 19 * 2 + 12 * 12));
+    // auto and dsp: every width pair; lut: both widths up to 17; three PIPELINE values.
+    EXPECT_EQ(valid, std::size_t{3} * (19 * 19 * 2 + 12 * 12));
     // Widths split at 10 (auto's fabric threshold) and 18 (DSP operand split).
-    EXPECT_EQ(classes.size(), std::size_t{2} * (9 + 9 + 4));
+    EXPECT_EQ(classes.size(), std::size_t{3} * (9 + 9 + 4));
 }
 
 // The AXI4-Stream wrapper's tdata: the payload ports back to back from bit

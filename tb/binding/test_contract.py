@@ -71,7 +71,7 @@ def test_every_configuration_has_the_row_of_the_table():
     ({"coord_bits": 5}, "COORD_BITS = 5"),
     ({"dir_bits": 25}, "DIR_BITS = 25"),
     ({"tag_bits": 0}, "TAG_BITS = 0"),
-    ({"pipeline": 2}, "PIPELINE = 2"),
+    ({"pipeline": 3}, "PIPELINE = 3"),
     ({"mul_style": "fast"}, "fast"),
     ({"coord_bits": 18, "mul_style": "lut"}, "MUL_STYLE lut"),
 ])

@@ -184,6 +184,8 @@ SHORT = [
     (7, 22, 1, "auto", 0, 0.25),      # LATENCY 7 (DIR_BITS >= 18)
     (16, 16, 1, "dsp-ecp5", 0, 0.25),  # LATENCY 6, one MULT18X18D per product
     (24, 24, 0, "dsp-ecp5", 0, 0.25),  # LATENCY 8, nearest at a wide width, DSP with both operands split
+    (16, 16, 1, "dsp-ecp5", 2, 0.25),  # LATENCY 8: PIPELINE = 2, a fabric register after every MULT18X18D
+    (8, 8, 1, "auto", 2, 0.25),       # LATENCY 8: PIPELINE = 2 in fabric (tree cut, output register)
 ]
 # PLUECKER_LONG=1: every width pair above in both modes with the default
 # multipliers, and the other builds, all at the full (25x) query counts.

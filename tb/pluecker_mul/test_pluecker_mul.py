@@ -48,8 +48,8 @@ async def stream(dut, idle: bool) -> None:
 # sign-extended into the 51-bit sum) and the extremes the module allows.
 ECP5_WIDTHS = [(17, 17, 0), (19, 17, 0), (17, 19, 0), (19, 19, 0), (25, 25, 0), (25, 7, 0), (7, 25, 0),
                (21, 25, 1), (25, 18, 1), (18, 18, 1), (35, 18, 0), (26, 26, 0), (23, 21, 0), (6, 7, 0),
-               (19, 25, 0), (25, 19, 1), (35, 33, 0), (21, 19, 0)]
-GENERIC_WIDTHS = [(17, 17, 0), (25, 7, 1), (26, 26, 0)]
+               (19, 25, 0), (25, 19, 1), (35, 33, 0), (21, 19, 0), (17, 17, 2), (25, 19, 2)]
+GENERIC_WIDTHS = [(17, 17, 0), (25, 7, 1), (26, 26, 0), (19, 17, 2)]
 
 
 def _build_and_run(wa: int, wb: int, pipeline: int, ecp5: bool) -> None:

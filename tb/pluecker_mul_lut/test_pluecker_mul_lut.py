@@ -46,7 +46,7 @@ async def stream(dut) -> None:
     await bench.run(pairs, "stream idle=True")
 
 
-LUT_WIDTHS = [(2, 2, 0), (2, 2, 1), (3, 9, 0), (9, 3, 1), (8, 8, 0), (9, 9, 1), (7, 7, 1), (17, 17, 0)]
+LUT_WIDTHS = [(2, 2, 0), (2, 2, 1), (3, 9, 0), (9, 3, 1), (8, 8, 0), (9, 9, 1), (7, 7, 1), (17, 17, 0), (9, 9, 2)]
 
 
 @pytest.mark.parametrize("wa,wb,pipeline", LUT_WIDTHS, ids=[f"{a}x{b}_p{p}" for a, b, p in LUT_WIDTHS])

@@ -152,7 +152,7 @@ def test_bad_settings():
     expect2({"ARRAY_DSP": "0", "ARRAY_LUT": "0"}, "ARRAY_DSP + ARRAY_LUT = 0 is not in 1..256")
     expect2({"ARRAY_DSP": "two"}, "ARRAY_DSP=two is not an integer in 0..256")
     expect2({"ARRAY_LUT": "257"}, "ARRAY_LUT=257 is not an integer in 0..256")
-    expect2({"SIM_PIPELINE": "2"}, "SIM_PIPELINE=2 is not 0 or 1")
+    expect2({"SIM_PIPELINE": "3"}, "SIM_PIPELINE=3 is not 0, 1 or 2")
     expect2({"COORD_BITS": "5"}, "COORD_BITS=5 is not an integer in 6..24")
 
 

@@ -161,7 +161,7 @@ def test_bad_settings():
     expect2({"CASCADE_N": "0"}, "CASCADE_N=0 is not an integer in 1..64")
     expect2({"CASCADE_N": "65"}, "CASCADE_N=65 is not an integer in 1..64")
     expect2({"MODE": "nearest"}, "the cascade is conservative only")
-    expect2({"SIM_PIPELINE": "2"}, "SIM_PIPELINE=2 is not 0 or 1")
+    expect2({"SIM_PIPELINE": "3"}, "SIM_PIPELINE=3 is not 0, 1 or 2")
 
 
 def test_bad_input(cascade):

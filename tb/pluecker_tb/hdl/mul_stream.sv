@@ -17,7 +17,7 @@
 module mul_stream #(
     parameter int WA = 17,
     parameter int WB = 17,
-    parameter bit PIPELINE = 0,
+    parameter int PIPELINE = 0,
     parameter bit LUT = 0
 ) (
     input  wire                    clk_i,
@@ -29,7 +29,7 @@ module mul_stream #(
     output wire signed [WA+WB-1:0] p_o
 );
   localparam int ADD_STAGES = LUT ? 0 : ((WA > 18) ? 1 : 0) + ((WB > 18) ? 1 : 0);
-  localparam int LATENCY = 2 + (PIPELINE ? 1 : 0) + ADD_STAGES;
+  localparam int LATENCY = 2 + PIPELINE + ADD_STAGES;
   localparam bit SIGNED = 1;  // both multipliers are signed
 `ifdef PLUECKER_ECP5
   localparam bit ECP5 = 1;

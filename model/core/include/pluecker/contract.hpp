@@ -14,7 +14,12 @@
 //   TAG_BITS                       >= 1
 //   CONSERVATIVE                   1 (margin) or 0 (nearest)
 //   MUL_STYLE                      "auto" | "dsp" | "lut"
-//   PIPELINE                       0..1: the multipliers' extra output register
+//   PIPELINE                       0..2: the multipliers' extra registers (1:
+//                                   the MULT18X18D pipeline register, in
+//                                   fabric a cut across the adder tree; 2:
+//                                   also a fabric register after every
+//                                   product, so the route out of a DSP
+//                                   column gets a whole period)
 //
 // Derived constants (PortContract), exactly as the RTL derives them
 //   WA = C + 1, WB = D + 1          multiplier operands (signed A_i / B_j, D_i)
@@ -60,7 +65,7 @@ struct ContractLimits {
     static constexpr int kMinBits = 6;   // COORD_BITS, DIR_BITS
     static constexpr int kMaxBits = 24;
     static constexpr int kMinTagBits = 1;
-    static constexpr int kMaxPipeline = 1;
+    static constexpr int kMaxPipeline = 2;
     // A MULT18X18D operand; a wider multiplier operand is split in two.
     static constexpr int kDspOperandBits = 18;
     // MUL_STYLE "auto" builds the multipliers in fabric when both widths are
