@@ -36,20 +36,34 @@
 //   no answer of a query taken before it appears after it.
 //
 // Escalation slots: an uncertain answer leaves its narrow unit into its
-// lane's slot (one entry: tag and wide query, loaded when the slot is empty
-// or emptied in the same clock), so the lane's next answers move on while
-// it waits for the wide unit, and the arbiter works on flops only: its
-// path (slot valid bits -> grant -> wide query multiplexer -> wide unit)
-// never crosses a narrow unit's FIFO read or another lane's handshake.
-// Arbitration: each clock the wide unit takes at most one slot, the first
-// full one at or after a round-robin pointer; an offer not taken is offered
-// again unchanged (the pointer stays on it), a taken one moves the pointer
-// past its lane; the granted query waits one clock in the wide unit's input
-// register. An escalated answer spends two more clocks than the two units'
-// LATENCY: one in its slot, one in that register. With N_NARROW lanes each
-// escalating a fraction e of its queries, the cascade sustains N_NARROW
-// queries per clock while N_NARROW * e <= 1; above that the wide unit sets
-// the pace (lanes wait through their credits, nothing is lost).
+// lane's slot (one entry: tag and wide query, loaded when the slot is
+// empty), so the lane's next answers move on while it waits for the wide
+// unit, and the arbiter works on flops only: its path (slot valid bits and
+// a credit flop -> grant) never crosses a narrow unit's FIFO read or
+// another lane's handshake.
+// Arbitration: each clock the arbiter grants at most one slot, the first
+// full one at or after a round-robin pointer, when it holds a credit of the
+// wide unit; an offer not granted is offered again unchanged (the pointer
+// stays on it), a granted one moves the pointer past its lane and empties
+// its slot. The grant is registered (grant_q); in the next clock the
+// granted slot's query and tag move through a multiplexer driven by that
+// flop into the wide unit's input register, which loads every clock (no
+// enable: the decision reaches its few hundred flops from one register,
+// not from the arbiter's logic). The slot is refilled no earlier than the
+// clock after it emptied, so the multiplexer reads the granted query.
+// Credits: the cascade mirrors the wide unit's (wcred_q, its FIFO_DEPTH
+// from the port contract): a grant takes one, an esc_* transfer returns
+// one. A granted query reaches the wide unit two clocks later, so the wide
+// unit holds at least as many credits as the cascade plus the queries on
+// their way: it is always ready when its input register is full (asserted
+// under ASSERT_ON).
+// An escalated answer spends three more clocks than the two units' LATENCY:
+// one in its slot, one in grant_q, one in the input register. A lane
+// escalates at most every other clock (its slot refills the clock after it
+// empties); with N_NARROW lanes each escalating a fraction e <= 1/2 of its
+// queries, the cascade sustains N_NARROW queries per clock while
+// N_NARROW * e <= 1; above that the wide unit sets the pace (lanes wait
+// through their credits, nothing is lost).
 //
 // Per lane, the wide query waits in a FIFO beside the narrow unit: written
 // when the narrow unit takes the query, read when its answer leaves. The
@@ -141,11 +155,24 @@ module pluecker_cascade #(
   wire [N*WQ-1:0] side_head;  // per lane, the wide query of the narrow unit's oldest answer
   wire [N*WQ-1:0] slot_query;  // per lane, the wide query in its slot
   wire [N*TAG_BITS-1:0] slot_tag;
+  // The wide unit's ready: implied by the credits (read only by an
+  // assertion under ASSERT_ON).
+  /* verilator lint_off UNUSEDSIGNAL */
   wire w_in_ready;
-  // The wide unit's input register (one query: the granted slot's), free
-  // when empty or taken by the wide unit in this clock.
+  /* verilator lint_on UNUSEDSIGNAL */
+  // The wide unit's input register (one query: the granted slot's; valid
+  // bit reset, contents not).
   logic wq_v_q;
-  wire wq_free = !wq_v_q || w_in_ready;
+  // The wide unit's FIFO depth (its credits), from the port contract.
+  localparam logic [31:0] WIDE_STYLE_S = 32'(WIDE_MUL_STYLE);
+  localparam int WIDE_CLASS = pluecker_contract_pkg::contract_class(WIDE_COORD_BITS, WIDE_DIR_BITS,
+                                                                     WIDE_STYLE_S, PIPELINE);
+  localparam int WIDE_CREDITS = (WIDE_CLASS < 0) ? 1 : pluecker_contract_pkg::contract_fifo_depth(WIDE_CLASS);
+  // The cascade's credits of the wide unit, a thermometer code (bit i set:
+  // more than i), one bit above WIDE_CREDITS (never set).
+  localparam int WCT = WIDE_CREDITS + 1;
+  logic [WCT-1:0] wcred_q;
+  wire esc_give = esc_valid_o && esc_ready_i;
 
   for (genvar l = 0; l < N; l++) begin : g_lane
     pluecker_intersector #(
@@ -177,10 +204,10 @@ module pluecker_cascade #(
     );
 
     // Certain answers (hit == strict) leave on the lane; uncertain ones move
-    // into the lane's escalation slot when it is free (empty, or taken by
-    // the wide unit in this clock).
-    wire slot_take = grant[l] && wq_free;
-    wire slot_free = !slot_v_q[l] || slot_take;
+    // into the lane's escalation slot when it is empty (not in the clock a
+    // grant empties it: the multiplexer reads it in the next one).
+    wire slot_take = grant[l] && w_take;
+    wire slot_free = !slot_v_q[l];
     wire slot_load = uncertain[l] && slot_free;
     assign out_valid_o[l] = n_valid[l] && !uncertain[l];
     assign out_tag_o[l*TAG_BITS+:TAG_BITS] = n_tag[l*TAG_BITS+:TAG_BITS];
@@ -270,7 +297,7 @@ module pluecker_cascade #(
     end
   end
 
-  wire w_take = any_req && wq_free;
+  wire w_take = any_req && wcred_q[0];
   always_ff @(posedge clk_i) begin
     if (rst_i) rr_q <= '0;
     // Past a taken lane; onto an offered one that waits (held unchanged).
@@ -278,26 +305,57 @@ module pluecker_cascade #(
     else if (any_req) rr_q <= gidx;
   end
 
-  // The granted slot's wide query (one-hot multiplexer) into the wide
-  // unit's input register (valid bit reset, contents not): the wide unit's
-  // class multiplexers and subtracts start from flops.
+  // Credits: a grant takes one, an answer on esc_* returns one.
+  always_ff @(posedge clk_i) begin
+    if (rst_i) wcred_q <= (WCT'(1) << WIDE_CREDITS) - 1'b1;
+    else if (w_take && !esc_give) wcred_q <= wcred_q >> 1;
+    else if (esc_give && !w_take) wcred_q <= {wcred_q[WCT-2:0], 1'b1};
+  end
+
+  // The grant, registered (one-hot; control, reset) with its lane number.
+  logic [N-1:0] grant_q;
+  logic [LANE_BITS-1:0] gidx_q;
+  always_ff @(posedge clk_i) begin
+    if (rst_i) grant_q <= '0;
+    else grant_q <= w_take ? grant : '0;
+  end
+  always_ff @(posedge clk_i) gidx_q <= gidx;
+
+  // The granted slot's wide query and tag (one-hot multiplexer from
+  // grant_q) into the wide unit's input register, every clock: the wide
+  // unit's class multiplexers and subtracts start from flops.
   logic [WQ-1:0] w_query, wq_q;
+  logic [TAG_BITS-1:0] w_tag;
   logic [LANE_BITS+TAG_BITS-1:0] wq_tag_q;
   always_comb begin
     w_query = '0;
-    for (int l = 0; l < N; l++) if (grant[l]) w_query = w_query | slot_query[l*WQ+:WQ];
+    w_tag = '0;
+    for (int l = 0; l < N; l++) begin
+      if (grant_q[l]) begin
+        w_query = w_query | slot_query[l*WQ+:WQ];
+        w_tag = w_tag | slot_tag[l*TAG_BITS+:TAG_BITS];
+      end
+    end
   end
   always_ff @(posedge clk_i) begin
     if (rst_i) wq_v_q <= 1'b0;
-    else if (w_take) wq_v_q <= 1'b1;
-    else if (w_in_ready) wq_v_q <= 1'b0;
+    else wq_v_q <= |grant_q;
   end
   always_ff @(posedge clk_i) begin
-    if (w_take) begin
-      wq_q <= w_query;
-      wq_tag_q <= {gidx, slot_tag[gidx*TAG_BITS+:TAG_BITS]};
+    wq_q <= w_query;
+    wq_tag_q <= {gidx_q, w_tag};
+  end
+
+`ifdef ASSERT_ON
+  // The credits keep the wide unit ready for every query in its input
+  // register, and never exceed its FIFO depth.
+  always_ff @(posedge clk_i) begin
+    if (!rst_i) begin
+      a_wide_ready : assert (!wq_v_q || w_in_ready);
+      a_wcred_top : assert (!wcred_q[WCT-1]);
     end
   end
+`endif
 
   // -------------------------------------------------------------------------
   // The wide unit: tag = {lane, tag}

@@ -189,8 +189,9 @@ MUTANTS: list[Mutant] = [
     Mutant("cascade-slot-overwrite", "cascade: an uncertain answer loaded into a full escalation slot (lost)",
            [(CASCADE_RTL, "wire slot_load = uncertain[l] && slot_free;", "wire slot_load = uncertain[l];")],
            [CASCADE_TB]),
-    Mutant("cascade-wide-input-overwrite", "cascade: a slot granted while the wide unit's input register is full",
-           [(CASCADE_RTL, "wire wq_free = !wq_v_q || w_in_ready;", "wire wq_free = 1'b1;")],
+    Mutant("cascade-wide-input-overwrite", "cascade: a slot granted without a credit of the wide unit "
+           "(its input register offered while it is not ready: lost)",
+           [(CASCADE_RTL, "wire w_take = any_req && wcred_q[0];", "wire w_take = any_req;")],
            [CASCADE_TB]),
     # The handshake mutants of the formal harness (bounded check).
     Mutant("formal-credit-leak", "RTL: a credit returned on every output handshake, also with an input",

@@ -25,8 +25,9 @@ constexpr int kWC3 = 3 * SIM_WIDE_COORD_BITS;
 constexpr int kWD3 = 3 * SIM_WIDE_DIR_BITS;
 constexpr int kT = SIM_TAG_BITS;
 // Clocks an escalated answer waits between the units: one in its lane's escalation
-// slot, one in the wide unit's input register (rtl/pluecker_cascade.sv).
-constexpr int kSlotCycles = 2;
+// slot, one in the registered grant, one in the wide unit's input register
+// (rtl/pluecker_cascade.sv).
+constexpr int kSlotCycles = 3;
 
 RtlConfig unit_config(int coord_bits, int dir_bits, int tag_bits) {
     RtlConfig c;

@@ -22,8 +22,8 @@
 // (pluecker/contract.hpp): the constructor checks every port's width and
 // measures, in every lane, the latency of a certain answer (the narrow
 // unit's LATENCY) and of an escalated one (narrow LATENCY, a clock in the
-// lane's escalation slot and one in the wide unit's input register, wide
-// LATENCY).
+// lane's escalation slot, one in the registered grant and one in the wide
+// unit's input register, wide LATENCY).
 //
 // Clocking, per cycle: drive every lane's inputs with the clock low and
 // evaluate, sample the output streams (esc_* first, then every lane's), the
