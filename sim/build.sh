@@ -22,7 +22,7 @@
 # each, at COORD_BITS, DIR_BITS, MODE, SIM_TAG_BITS and SIM_PIPELINE; a
 # style the port contract has no class for at those widths (fabric units
 # take up to 17 bits) is refused; SIM_OUT defaults to
-# build/sim/array_<N_DSP>x<N_LUT>_<C>x<D>[_nearest]. SIM_UNIT=cascade builds
+# build/sim/array_<N_DSP>x<N_LUT>_<C>x<D>[_nearest][_p<P>]. SIM_UNIT=cascade builds
 # `pluecker_sim_cascade`: rtl/pluecker_cascade.sv with the harness in
 # sim/cascade/, CASCADE_N narrow lanes (1..64, default 2; TERNARY units at
 # NARROW_COORD_BITS x NARROW_DIR_BITS, default 8 x 8) escalating to one wide
@@ -153,7 +153,7 @@ case "$unit" in
     [[ "$P" =~ ^[012]$ ]] || die "SIM_PIPELINE=$P is not 0, 1 or 2"
     array_style_ok "$ND" dsp ARRAY_DSP "$P"
     array_style_ok "$NL" lut ARRAY_LUT "$P"
-    default_out="build/sim/array_${ND}x${NL}_${C}x${D}${suffix}"
+    default_out="build/sim/array_${ND}x${NL}_${C}x${D}${suffix}$([[ $P != 0 ]] && echo "_p$P" || true)"
     unit_args=(-DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_ARRAY_DSP="$ND" -DSIM_ARRAY_LUT="$NL")
     binary=pluecker_sim_array
     ;;
