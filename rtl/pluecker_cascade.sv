@@ -35,7 +35,13 @@
 //   rst_i (synchronous, active high) drops every query in flight anywhere;
 //   no answer of a query taken before it appears after it.
 //
-// Escalation slots: an uncertain answer leaves its narrow unit into its
+// Answer registers: each narrow unit's answers pass a skid register
+// (pluecker_axis_skid) before the lane decides certain or uncertain, so the
+// narrow unit's out_ready is a flop and no path runs from its output FIFO's
+// read through that decision back into its credits. A certain answer takes
+// the narrow unit's LATENCY plus one clock.
+//
+// Escalation slots: an uncertain answer leaves its answer register into its
 // lane's slot (one entry: tag and wide query, loaded when the slot is
 // empty), so the lane's next answers move on while it waits for the wide
 // unit, and the arbiter works on flops only: its path (slot valid bits and
@@ -45,30 +51,33 @@
 // full one at or after a round-robin pointer, when it holds a credit of the
 // wide unit; an offer not granted is offered again unchanged (the pointer
 // stays on it), a granted one moves the pointer past its lane and empties
-// its slot. The grant is registered (grant_q); in the next clock the
-// granted slot's query and tag move through a multiplexer driven by that
-// flop into the wide unit's input register, which loads every clock (no
-// enable: the decision reaches its few hundred flops from one register,
-// not from the arbiter's logic). The slot is refilled no earlier than the
-// clock after it emptied, so the multiplexer reads the granted query.
+// its slot. The grant is registered (grant_q, and one copy of it per 32
+// bits of the wide query); in the next clock the granted slot's query and
+// tag move through a multiplexer driven by those flops into the wide
+// unit's input register, which loads every clock (no enable: the decision
+// reaches its few hundred flops from registers of small fanout, not from
+// the arbiter's logic). The slot is refilled no earlier than the clock
+// after it emptied, so the multiplexer reads the granted query.
 // Credits: the cascade mirrors the wide unit's (wcred_q, its FIFO_DEPTH
 // from the port contract): a grant takes one, an esc_* transfer returns
 // one. A granted query reaches the wide unit two clocks later, so the wide
 // unit holds at least as many credits as the cascade plus the queries on
 // their way: it is always ready when its input register is full (asserted
 // under ASSERT_ON).
-// An escalated answer spends three more clocks than the two units' LATENCY:
-// one in its slot, one in grant_q, one in the input register. A lane
+// An escalated answer spends four more clocks than the two units' LATENCY:
+// one in its answer register, one in its slot, one in grant_q, one in the
+// input register. A lane
 // escalates at most every other clock (its slot refills the clock after it
 // empties); with N_NARROW lanes each escalating a fraction e <= 1/2 of its
 // queries, the cascade sustains N_NARROW queries per clock while
 // N_NARROW * e <= 1; above that the wide unit sets the pace (lanes wait
 // through their credits, nothing is lost).
 //
-// Per lane, the wide query waits in a FIFO beside the narrow unit: written
-// when the narrow unit takes the query, read when its answer leaves. The
-// narrow unit holds at most its FIFO_DEPTH queries (in flight and answered,
-// its credits), so a FIFO of that depth never overflows.
+// Per lane, the wide query waits in a FIFO beside the narrow unit (of the
+// narrow unit's FIFO_DEPTH): written when the narrow unit takes the query,
+// read when its answer leaves the answer register. The narrow unit holds
+// at most FIFO_DEPTH queries (its credits) and the answer register two
+// more, so the lane takes no query while the side FIFO is full (a flop).
 //
 // Outputs from flops through the narrow units' output FIFOs and a few gates
 // (no combinational path from any input to any output).
@@ -144,12 +153,15 @@ module pluecker_cascade #(
   localparam int SIDE_DEPTH = (NARROW_CLASS < 0) ? 16 : pluecker_contract_pkg::contract_fifo_depth(NARROW_CLASS);
   localparam int SIDE_AW = $clog2(SIDE_DEPTH);
 
-  // Narrow answers: valid, tag, conservative, strict.
+  // Narrow answers: valid, tag, conservative, strict; the same out of each
+  // lane's answer register (a skid register: a_*).
   wire [N-1:0] n_valid, n_ready, n_hit, n_strict, n_in_ready;
   wire [N*TAG_BITS-1:0] n_tag;
-  // Uncertain answers leaving a narrow unit; full escalation slots (the
-  // arbiter's requests) and the grant.
-  wire [N-1:0] uncertain = n_valid & n_hit & ~n_strict;
+  wire [N-1:0] a_valid, a_ready, a_hit, a_strict;
+  wire [N*TAG_BITS-1:0] a_tag;
+  // Uncertain answers leaving a lane's answer register; full escalation
+  // slots (the arbiter's requests) and the grant.
+  wire [N-1:0] uncertain = a_valid & a_hit & ~a_strict;
   logic [N-1:0] slot_v_q;
   logic [N-1:0] grant;
   wire [N*WQ-1:0] side_head;  // per lane, the wide query of the narrow unit's oldest answer
@@ -175,6 +187,7 @@ module pluecker_cascade #(
   wire esc_give = esc_valid_o && esc_ready_i;
 
   for (genvar l = 0; l < N; l++) begin : g_lane
+    wire side_full;  // the lane's side FIFO (below) is full (a flop's output)
     pluecker_intersector #(
         .COORD_BITS(NARROW_COORD_BITS),
         .DIR_BITS(NARROW_DIR_BITS),
@@ -186,7 +199,7 @@ module pluecker_cascade #(
     ) u_narrow (
         .clk_i(clk_i),
         .rst_i(rst_i),
-        .in_valid_i(in_valid_i[l]),
+        .in_valid_i(in_valid_i[l] && !side_full),
         .in_ready_o(n_in_ready[l]),
         .in_tag_i(in_tag_i[l*TAG_BITS+:TAG_BITS]),
         .ray_class_i(ray_class_i[l*3+:3]),
@@ -203,17 +216,36 @@ module pluecker_cascade #(
         .out_strict_o(n_strict[l])
     );
 
+    // The lane's answer register: its ready (to the narrow unit) and its
+    // answer (to the decision below) are flops, so no path runs from the
+    // narrow unit's output FIFO read through the certain/uncertain decision
+    // back into its credits.
+    pluecker_axis_skid #(
+        .DATA_BITS(TAG_BITS + 2)
+    ) u_answer (
+        .clk_i(clk_i),
+        .rst_i(rst_i),
+        .in_valid_i(n_valid[l]),
+        .in_ready_o(n_ready[l]),
+        .in_data_i({n_tag[l*TAG_BITS+:TAG_BITS], n_hit[l], n_strict[l]}),
+        .out_valid_o(a_valid[l]),
+        .out_ready_i(a_ready[l]),
+        .out_data_o({a_tag[l*TAG_BITS+:TAG_BITS], a_hit[l], a_strict[l]})
+    );
+
     // Certain answers (hit == strict) leave on the lane; uncertain ones move
     // into the lane's escalation slot when it is empty (not in the clock a
     // grant empties it: the multiplexer reads it in the next one).
     wire slot_take = grant[l] && w_take;
     wire slot_free = !slot_v_q[l];
     wire slot_load = uncertain[l] && slot_free;
-    assign out_valid_o[l] = n_valid[l] && !uncertain[l];
-    assign out_tag_o[l*TAG_BITS+:TAG_BITS] = n_tag[l*TAG_BITS+:TAG_BITS];
-    assign out_hit_o[l] = n_hit[l];
-    assign n_ready[l] = uncertain[l] ? slot_free : out_ready_i[l];
-    assign in_ready_o[l] = n_in_ready[l];
+    assign out_valid_o[l] = a_valid[l] && !uncertain[l];
+    assign out_tag_o[l*TAG_BITS+:TAG_BITS] = a_tag[l*TAG_BITS+:TAG_BITS];
+    assign out_hit_o[l] = a_hit[l];
+    assign a_ready[l] = uncertain[l] ? slot_free : out_ready_i[l];
+    // The side FIFO holds the queries in the narrow unit and in the answer
+    // register: a lane takes no query while it is full.
+    assign in_ready_o[l] = n_in_ready[l] && !side_full;
 
     // The escalation slot (valid bit reset, contents not).
     logic [TAG_BITS-1:0] slot_tag_q;
@@ -225,7 +257,7 @@ module pluecker_cascade #(
     end
     always_ff @(posedge clk_i) begin
       if (slot_load) begin
-        slot_tag_q <= n_tag[l*TAG_BITS+:TAG_BITS];
+        slot_tag_q <= a_tag[l*TAG_BITS+:TAG_BITS];
         slot_query_q <= side_head[l*WQ+:WQ];
       end
     end
@@ -235,17 +267,29 @@ module pluecker_cascade #(
     // The side FIFO of wide queries (pointers reset, contents not).
     logic [WQ-1:0] side_q[SIDE_DEPTH];
     logic [SIDE_AW:0] side_wr_q, side_rd_q;
-    wire push = in_valid_i[l] && n_in_ready[l];
-    wire pop = n_valid[l] && n_ready[l];
+    // Its occupancy, a thermometer code (bit i set: more than i entries),
+    // so that "full" is a flop of its own; a read counts one clock late
+    // (pop_q: the count is never below the truth, the answer path does not
+    // reach it).
+    logic [SIDE_DEPTH-1:0] side_occ_q;
+    logic pop_q;
+    wire push = in_valid_i[l] && in_ready_o[l];
+    wire pop = a_valid[l] && a_ready[l];
     always_ff @(posedge clk_i) begin
       if (rst_i) begin
         side_wr_q <= '0;
         side_rd_q <= '0;
+        side_occ_q <= '0;
+        pop_q <= 1'b0;
       end else begin
         if (push) side_wr_q <= side_wr_q + 1'b1;
         if (pop) side_rd_q <= side_rd_q + 1'b1;
+        pop_q <= pop;
+        if (push && !pop_q) side_occ_q <= {side_occ_q[SIDE_DEPTH-2:0], 1'b1};
+        else if (pop_q && !push) side_occ_q <= side_occ_q >> 1;
       end
     end
+    assign side_full = side_occ_q[SIDE_DEPTH-1];
     always_ff @(posedge clk_i) begin
       if (push)
         side_q[side_wr_q[SIDE_AW-1:0]] <= {
@@ -261,8 +305,8 @@ module pluecker_cascade #(
     assign side_head[l*WQ+:WQ] = side_q[side_rd_q[SIDE_AW-1:0]];
 
 `ifdef ASSERT_ON
-    // The side FIFO holds exactly the narrow unit's queries (in flight and
-    // answered): never more than its depth. (Unlabelled: Yosys does not
+    // The side FIFO holds exactly the lane's queries (in the narrow unit and
+    // in the answer register): never more than its depth. (Unlabelled: Yosys does not
     // prefix labels inside generate blocks, so one label per lane clashes.)
     wire [SIDE_AW:0] side_count = side_wr_q - side_rd_q;
     always_ff @(posedge clk_i) begin
@@ -321,9 +365,25 @@ module pluecker_cascade #(
   end
   always_ff @(posedge clk_i) gidx_q <= gidx;
 
-  // The granted slot's wide query and tag (one-hot multiplexer from
-  // grant_q) into the wide unit's input register, every clock: the wide
-  // unit's class multiplexers and subtracts start from flops.
+  // Copies of grant_q, one per GRANT_FANOUT bits of the wide query, so
+  // that no flop drives more than GRANT_FANOUT multiplexer inputs (one
+  // flop driving all WQ of them spread over the wide unit's region: a
+  // 6.3 ns net on its own). The keep attribute stops Yosys from merging
+  // the identical flops.
+  localparam int GRANT_FANOUT = 32;
+  localparam int GREP = (WQ + GRANT_FANOUT - 1) / GRANT_FANOUT;
+  logic [GREP*N-1:0] grant_rep_q;
+  for (genvar r = 0; r < GREP; r++) begin : g_grant_rep
+    (* keep *)
+    always_ff @(posedge clk_i) begin
+      if (rst_i) grant_rep_q[r*N+:N] <= '0;
+      else grant_rep_q[r*N+:N] <= w_take ? grant : '0;
+    end
+  end
+
+  // The granted slot's wide query and tag (one-hot multiplexer from the
+  // copies of grant_q) into the wide unit's input register, every clock:
+  // the wide unit's class multiplexers and subtracts start from flops.
   logic [WQ-1:0] w_query, wq_q;
   logic [TAG_BITS-1:0] w_tag;
   logic [LANE_BITS+TAG_BITS-1:0] wq_tag_q;
@@ -331,10 +391,9 @@ module pluecker_cascade #(
     w_query = '0;
     w_tag = '0;
     for (int l = 0; l < N; l++) begin
-      if (grant_q[l]) begin
-        w_query = w_query | slot_query[l*WQ+:WQ];
-        w_tag = w_tag | slot_tag[l*TAG_BITS+:TAG_BITS];
-      end
+      for (int b = 0; b < WQ; b++)
+        if (grant_rep_q[(b / GRANT_FANOUT) * N + l]) w_query[b] = w_query[b] | slot_query[l*WQ+b];
+      if (grant_q[l]) w_tag = w_tag | slot_tag[l*TAG_BITS+:TAG_BITS];
     end
   end
   always_ff @(posedge clk_i) begin

@@ -193,6 +193,10 @@ MUTANTS: list[Mutant] = [
            "(its input register offered while it is not ready: lost)",
            [(CASCADE_RTL, "wire w_take = any_req && wcred_q[0];", "wire w_take = any_req;")],
            [CASCADE_TB]),
+    Mutant("cascade-side-overflow", "cascade: a narrow unit takes a query while its lane's side FIFO is full "
+           "(a wide query overwritten: the lane's in_ready_o low, the query taken twice)",
+           [(CASCADE_RTL, ".in_valid_i(in_valid_i[l] && !side_full),", ".in_valid_i(in_valid_i[l]),")],
+           [CASCADE_TB]),
     # The handshake mutants of the formal harness (bounded check).
     Mutant("formal-credit-leak", "RTL: a credit returned on every output handshake, also with an input",
            [(RTL, "if (give && !take) credits_d = {credits_q[CT-2:0], 1'b1};",

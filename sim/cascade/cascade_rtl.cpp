@@ -24,9 +24,11 @@ constexpr int kND3 = 3 * SIM_NARROW_DIR_BITS;
 constexpr int kWC3 = 3 * SIM_WIDE_COORD_BITS;
 constexpr int kWD3 = 3 * SIM_WIDE_DIR_BITS;
 constexpr int kT = SIM_TAG_BITS;
-// Clocks an escalated answer waits between the units: one in its lane's escalation
-// slot, one in the registered grant, one in the wide unit's input register
-// (rtl/pluecker_cascade.sv).
+// Clocks every answer spends in its lane's answer register (a skid register
+// behind the narrow unit), and clocks an escalated answer waits between the
+// units besides: one in its lane's escalation slot, one in the registered
+// grant, one in the wide unit's input register (rtl/pluecker_cascade.sv).
+constexpr int kAnswerCycles = 1;
 constexpr int kSlotCycles = 3;
 
 RtlConfig unit_config(int coord_bits, int dir_bits, int tag_bits) {
@@ -216,17 +218,19 @@ void CascadeRtl::drive(int l, const CascadeQuery& q, std::uint64_t tag) {
     set_bits(t.in_tag_i, kT * l, kT, static_cast<std::uint32_t>(tag & tag_mask_));
 }
 
-// A certain answer takes the narrow unit's LATENCY; an escalated one, with
-// the wide unit idle, that plus kSlotCycles plus the wide unit's.
+// A certain answer takes the narrow unit's LATENCY plus kAnswerCycles; an
+// escalated one, with the wide unit idle, that plus kSlotCycles plus the wide
+// unit's.
 void CascadeRtl::measure_latencies(int lane) {
     const std::string who = "lane " + std::to_string(lane) + ": ";
     const int certain = measure(lane, probe(false), AnswerPath::Lane);
     const int escalated = measure(lane, probe(true), AnswerPath::Escalated);
-    const int want_certain = narrow_contract().latency();
+    const int want_certain = narrow_contract().latency() + kAnswerCycles;
     const int want_escalated = want_certain + kSlotCycles + wide_contract().latency();
     if (certain != want_certain)
         throw ProtocolError(who + "a certain answer after " + std::to_string(certain) +
-                            " cycles, the narrow unit's LATENCY (port contract) is " + std::to_string(want_certain));
+                            " cycles, the narrow unit's LATENCY (port contract) and the answer register add up to " +
+                            std::to_string(want_certain));
     if (escalated != want_escalated)
         throw ProtocolError(who + "an escalated answer after " + std::to_string(escalated) +
                             " cycles, the narrow unit's LATENCY, the clocks between the units and the wide unit's LATENCY add up to " +

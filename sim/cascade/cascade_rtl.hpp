@@ -21,9 +21,10 @@
 // format and the LATENCY of each unit are the port contract's
 // (pluecker/contract.hpp): the constructor checks every port's width and
 // measures, in every lane, the latency of a certain answer (the narrow
-// unit's LATENCY) and of an escalated one (narrow LATENCY, a clock in the
-// lane's escalation slot, one in the registered grant and one in the wide
-// unit's input register, wide LATENCY).
+// unit's LATENCY and a clock in the lane's answer register) and of an
+// escalated one (that, a clock in the lane's escalation slot, one in the
+// registered grant and one in the wide unit's input register, wide
+// LATENCY).
 //
 // Clocking, per cycle: drive every lane's inputs with the clock low and
 // evaluate, sample the output streams (esc_* first, then every lane's), the
