@@ -74,8 +74,9 @@
 // through their credits, nothing is lost).
 //
 // Per lane, the wide query waits in a FIFO beside the narrow unit (of the
-// narrow unit's FIFO_DEPTH): written when the narrow unit takes the query,
-// read when its answer leaves the answer register. The narrow unit holds
+// narrow unit's FIFO_DEPTH): written when the narrow unit takes the query
+// (from registers, a clock later), read when its answer leaves the answer
+// register. The narrow unit holds
 // at most FIFO_DEPTH queries (its credits) and the answer register two
 // more, so the lane takes no query while the side FIFO is full (a flop).
 //
@@ -152,6 +153,9 @@ module pluecker_cascade #(
                                                                        NARROW_STYLE_S, PIPELINE);
   localparam int SIDE_DEPTH = (NARROW_CLASS < 0) ? 16 : pluecker_contract_pkg::contract_fifo_depth(NARROW_CLASS);
   localparam int SIDE_AW = $clog2(SIDE_DEPTH);
+  // The side FIFO's write enable: one copy per SIDE_CHUNK bits.
+  localparam int SIDE_CHUNK = 32;
+  localparam int SIDE_CHUNKS = (WQ + SIDE_CHUNK - 1) / SIDE_CHUNK;
 
   // Narrow answers: valid, tag, conservative, strict; the same out of each
   // lane's answer register (a skid register: a_*).
@@ -264,8 +268,12 @@ module pluecker_cascade #(
     assign slot_tag[l*TAG_BITS+:TAG_BITS] = slot_tag_q;
     assign slot_query[l*WQ+:WQ] = slot_query_q;
 
-    // The side FIFO of wide queries (pointers reset, contents not).
-    logic [WQ-1:0] side_q[SIDE_DEPTH];
+    // The side FIFO of wide queries (pointers reset, contents not). A push
+    // is written one clock later from registers (data, address, and one
+    // copy of the write enable per SIDE_CHUNK bits: no net from the
+    // handshake's logic fans out to the WQ / 4 distributed-RAM blocks). An
+    // entry is read no earlier than the narrow unit's LATENCY after its
+    // push, and a freed one is written only after a later push.
     logic [SIDE_AW:0] side_wr_q, side_rd_q;
     // Its occupancy, a thermometer code (bit i set: more than i entries),
     // so that "full" is a flop of its own; a read counts one clock late
@@ -290,19 +298,35 @@ module pluecker_cascade #(
       end
     end
     assign side_full = side_occ_q[SIDE_DEPTH-1];
+    logic [WQ-1:0] side_wdata_q;
+    logic [SIDE_AW-1:0] side_waddr_q;
     always_ff @(posedge clk_i) begin
-      if (push)
-        side_q[side_wr_q[SIDE_AW-1:0]] <= {
-          wide_ray_class_i[l*3+:3],
-          wide_ray_org_i[l*WC3+:WC3],
-          wide_ray_dir_i[l*WD3+:WD3],
-          wide_ray_end_i[l*WC3+:WC3],
-          wide_ray_end_valid_i[l],
-          wide_box_min_i[l*WC3+:WC3],
-          wide_box_max_i[l*WC3+:WC3]
-        };
+      side_wdata_q <= {
+        wide_ray_class_i[l*3+:3],
+        wide_ray_org_i[l*WC3+:WC3],
+        wide_ray_dir_i[l*WD3+:WD3],
+        wide_ray_end_i[l*WC3+:WC3],
+        wide_ray_end_valid_i[l],
+        wide_box_min_i[l*WC3+:WC3],
+        wide_box_max_i[l*WC3+:WC3]
+      };
+      side_waddr_q <= side_wr_q[SIDE_AW-1:0];
     end
-    assign side_head[l*WQ+:WQ] = side_q[side_rd_q[SIDE_AW-1:0]];
+    for (genvar c = 0; c < SIDE_CHUNKS; c++) begin : g_side
+      localparam int LO = c * SIDE_CHUNK;
+      localparam int CW = (WQ - LO < SIDE_CHUNK) ? WQ - LO : SIDE_CHUNK;
+      logic we_q;  // this chunk's copy of the delayed push (control, reset)
+      (* keep *)
+      always_ff @(posedge clk_i) begin
+        if (rst_i) we_q <= 1'b0;
+        else we_q <= push;
+      end
+      logic [CW-1:0] mem_q[SIDE_DEPTH];
+      always_ff @(posedge clk_i) begin
+        if (we_q) mem_q[side_waddr_q] <= side_wdata_q[LO+:CW];
+      end
+      assign side_head[l*WQ+LO+:CW] = mem_q[side_rd_q[SIDE_AW-1:0]];
+    end
 
 `ifdef ASSERT_ON
     // The side FIFO holds exactly the lane's queries (in the narrow unit and
