@@ -153,6 +153,11 @@ module pluecker_cascade #(
                                                                        NARROW_STYLE_S, PIPELINE);
   localparam int SIDE_DEPTH = (NARROW_CLASS < 0) ? 16 : pluecker_contract_pkg::contract_fifo_depth(NARROW_CLASS);
   localparam int SIDE_AW = $clog2(SIDE_DEPTH);
+  // Copies of a control flop that drives a wide register's enable or
+  // multiplexer (the registered grant, the slots' valid bits): one per
+  // GRANT_FANOUT bits of the wide query.
+  localparam int GRANT_FANOUT = 32;
+  localparam int GREP = (WQ + GRANT_FANOUT - 1) / GRANT_FANOUT;
   // The side FIFO's write enable: one copy per SIDE_CHUNK bits.
   localparam int SIDE_CHUNK = 32;
   localparam int SIDE_CHUNKS = (WQ + SIDE_CHUNK - 1) / SIDE_CHUNK;
@@ -251,19 +256,32 @@ module pluecker_cascade #(
     // register: a lane takes no query while it is full.
     assign in_ready_o[l] = n_in_ready[l] && !side_full;
 
-    // The escalation slot (valid bit reset, contents not).
+    // The escalation slot (valid bit reset, contents not). While empty it
+    // loads the head of the answer register and of the side FIFO every
+    // clock, so the clock that fills it loads the uncertain answer's query;
+    // full, it holds. Its enable is a copy of the inverted valid bit per
+    // GRANT_FANOUT bits (a flop each; the certain/uncertain decision does
+    // not fan out to the WQ flops).
     logic [TAG_BITS-1:0] slot_tag_q;
     logic [WQ-1:0] slot_query_q;
+    logic [GREP-1:0] slot_v_rep_q;
     always_ff @(posedge clk_i) begin
       if (rst_i) slot_v_q[l] <= 1'b0;
       else if (slot_load) slot_v_q[l] <= 1'b1;
       else if (slot_take) slot_v_q[l] <= 1'b0;
     end
-    always_ff @(posedge clk_i) begin
-      if (slot_load) begin
-        slot_tag_q <= a_tag[l*TAG_BITS+:TAG_BITS];
-        slot_query_q <= side_head[l*WQ+:WQ];
+    for (genvar r = 0; r < GREP; r++) begin : g_slot_v_rep
+      (* keep *)
+      always_ff @(posedge clk_i) begin
+        if (rst_i) slot_v_rep_q[r] <= 1'b0;
+        else if (slot_load) slot_v_rep_q[r] <= 1'b1;
+        else if (slot_take) slot_v_rep_q[r] <= 1'b0;
       end
+    end
+    always_ff @(posedge clk_i) begin
+      if (!slot_v_q[l]) slot_tag_q <= a_tag[l*TAG_BITS+:TAG_BITS];
+      for (int b = 0; b < WQ; b++)
+        if (!slot_v_rep_q[b/GRANT_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];
     end
     assign slot_tag[l*TAG_BITS+:TAG_BITS] = slot_tag_q;
     assign slot_query[l*WQ+:WQ] = slot_query_q;
@@ -394,8 +412,6 @@ module pluecker_cascade #(
   // flop driving all WQ of them spread over the wide unit's region: a
   // 6.3 ns net on its own). The keep attribute stops Yosys from merging
   // the identical flops.
-  localparam int GRANT_FANOUT = 32;
-  localparam int GREP = (WQ + GRANT_FANOUT - 1) / GRANT_FANOUT;
   logic [GREP*N-1:0] grant_rep_q;
   for (genvar r = 0; r < GREP; r++) begin : g_grant_rep
     (* keep *)

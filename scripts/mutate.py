@@ -186,7 +186,7 @@ MUTANTS: list[Mutant] = [
             "cocotb:tb/pluecker_intersector/test_pluecker_intersector.py::test_pluecker_intersector[c6_d6_cons]"
             "@throughput"]),
     # The cascade's escalation path (rtl/pluecker_cascade.sv).
-    Mutant("cascade-slot-overwrite", "cascade: an uncertain answer loaded into a full escalation slot (lost)",
+    Mutant("cascade-slot-overwrite", "cascade: an uncertain answer taken while its escalation slot is full",
            [(CASCADE_RTL, "wire slot_load = uncertain[l] && slot_free;", "wire slot_load = uncertain[l];")],
            [CASCADE_TB]),
     Mutant("cascade-wide-input-overwrite", "cascade: a slot granted without a credit of the wide unit "
