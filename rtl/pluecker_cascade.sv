@@ -66,19 +66,18 @@
 // under ASSERT_ON).
 // An escalated answer spends four more clocks than the two units' LATENCY:
 // one in its answer register, one in its slot, one in grant_q, one in the
-// input register. A lane
-// escalates at most every other clock (its slot refills the clock after it
-// empties); with N_NARROW lanes each escalating a fraction e <= 1/2 of its
-// queries, the cascade sustains N_NARROW queries per clock while
-// N_NARROW * e <= 1; above that the wide unit sets the pace (lanes wait
-// through their credits, nothing is lost).
+// input register. A lane escalates at most every other clock (its slot
+// refills the clock after it empties); with N_NARROW lanes each escalating
+// a fraction e <= 1/2 of its queries, the cascade sustains N_NARROW
+// queries per clock while N_NARROW * e <= 1; above that the wide unit sets
+// the pace (lanes wait through their credits, nothing is lost).
 //
 // Per lane, the wide query waits in a FIFO beside the narrow unit (of the
 // narrow unit's FIFO_DEPTH): written when the narrow unit takes the query
 // (from registers, a clock later), read when its answer leaves the answer
-// register. The narrow unit holds
-// at most FIFO_DEPTH queries (its credits) and the answer register two
-// more, so the lane takes no query while the side FIFO is full (a flop).
+// register. The narrow unit holds at most FIFO_DEPTH queries (its
+// credits) and the answer register two more, so the lane takes no query
+// while the side FIFO is full (a flop).
 //
 // Outputs from flops through the narrow units' output FIFOs and a few gates
 // (no combinational path from any input to any output).
@@ -153,14 +152,12 @@ module pluecker_cascade #(
                                                                        NARROW_STYLE_S, PIPELINE);
   localparam int SIDE_DEPTH = (NARROW_CLASS < 0) ? 16 : pluecker_contract_pkg::contract_fifo_depth(NARROW_CLASS);
   localparam int SIDE_AW = $clog2(SIDE_DEPTH);
-  // Copies of a control flop that drives a wide register's enable or
-  // multiplexer (the registered grant, the slots' valid bits): one per
-  // GRANT_FANOUT bits of the wide query.
-  localparam int GRANT_FANOUT = 32;
-  localparam int GREP = (WQ + GRANT_FANOUT - 1) / GRANT_FANOUT;
-  // The side FIFO's write enable: one copy per SIDE_CHUNK bits.
-  localparam int SIDE_CHUNK = 32;
-  localparam int SIDE_CHUNKS = (WQ + SIDE_CHUNK - 1) / SIDE_CHUNK;
+  // A control flop that drives a wide query's register enables, write
+  // enables or multiplexer selects (the registered grant, the slots' valid
+  // bits, the side FIFO's write enable) is kept in CTRL_COPIES copies, one
+  // per CTRL_FANOUT bits of the wide query.
+  localparam int CTRL_FANOUT = 32;
+  localparam int CTRL_COPIES = (WQ + CTRL_FANOUT - 1) / CTRL_FANOUT;
 
   // Narrow answers: valid, tag, conservative, strict; the same out of each
   // lane's answer register (a skid register: a_*).
@@ -260,17 +257,17 @@ module pluecker_cascade #(
     // loads the head of the answer register and of the side FIFO every
     // clock, so the clock that fills it loads the uncertain answer's query;
     // full, it holds. Its enable is a copy of the inverted valid bit per
-    // GRANT_FANOUT bits (a flop each; the certain/uncertain decision does
+    // CTRL_FANOUT bits (a flop each; the certain/uncertain decision does
     // not fan out to the WQ flops).
     logic [TAG_BITS-1:0] slot_tag_q;
     logic [WQ-1:0] slot_query_q;
-    logic [GREP-1:0] slot_v_rep_q;
+    logic [CTRL_COPIES-1:0] slot_v_rep_q;
     always_ff @(posedge clk_i) begin
       if (rst_i) slot_v_q[l] <= 1'b0;
       else if (slot_load) slot_v_q[l] <= 1'b1;
       else if (slot_take) slot_v_q[l] <= 1'b0;
     end
-    for (genvar r = 0; r < GREP; r++) begin : g_slot_v_rep
+    for (genvar r = 0; r < CTRL_COPIES; r++) begin : g_slot_v_rep
       (* keep *)
       always_ff @(posedge clk_i) begin
         if (rst_i) slot_v_rep_q[r] <= 1'b0;
@@ -281,14 +278,14 @@ module pluecker_cascade #(
     always_ff @(posedge clk_i) begin
       if (!slot_v_q[l]) slot_tag_q <= a_tag[l*TAG_BITS+:TAG_BITS];
       for (int b = 0; b < WQ; b++)
-        if (!slot_v_rep_q[b/GRANT_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];
+        if (!slot_v_rep_q[b/CTRL_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];
     end
     assign slot_tag[l*TAG_BITS+:TAG_BITS] = slot_tag_q;
     assign slot_query[l*WQ+:WQ] = slot_query_q;
 
     // The side FIFO of wide queries (pointers reset, contents not). A push
     // is written one clock later from registers (data, address, and one
-    // copy of the write enable per SIDE_CHUNK bits: no net from the
+    // copy of the write enable per CTRL_FANOUT bits: no net from the
     // handshake's logic fans out to the WQ / 4 distributed-RAM blocks). An
     // entry is read no earlier than the narrow unit's LATENCY after its
     // push, and a freed one is written only after a later push.
@@ -330,9 +327,9 @@ module pluecker_cascade #(
       };
       side_waddr_q <= side_wr_q[SIDE_AW-1:0];
     end
-    for (genvar c = 0; c < SIDE_CHUNKS; c++) begin : g_side
-      localparam int LO = c * SIDE_CHUNK;
-      localparam int CW = (WQ - LO < SIDE_CHUNK) ? WQ - LO : SIDE_CHUNK;
+    for (genvar c = 0; c < CTRL_COPIES; c++) begin : g_side
+      localparam int LO = c * CTRL_FANOUT;
+      localparam int CW = (WQ - LO < CTRL_FANOUT) ? WQ - LO : CTRL_FANOUT;
       logic we_q;  // this chunk's copy of the delayed push (control, reset)
       (* keep *)
       always_ff @(posedge clk_i) begin
@@ -347,9 +344,10 @@ module pluecker_cascade #(
     end
 
 `ifdef ASSERT_ON
-    // The side FIFO holds exactly the lane's queries (in the narrow unit and
-    // in the answer register): never more than its depth. (Unlabelled: Yosys does not
-    // prefix labels inside generate blocks, so one label per lane clashes.)
+    // The side FIFO holds exactly the lane's queries (in the narrow unit
+    // and in the answer register): never more than its depth. (Unlabelled:
+    // Yosys does not prefix labels inside generate blocks, so one label per
+    // lane clashes.)
     wire [SIDE_AW:0] side_count = side_wr_q - side_rd_q;
     always_ff @(posedge clk_i) begin
       if (!rst_i) assert (32'(side_count) <= SIDE_DEPTH);
@@ -407,13 +405,12 @@ module pluecker_cascade #(
   end
   always_ff @(posedge clk_i) gidx_q <= gidx;
 
-  // Copies of grant_q, one per GRANT_FANOUT bits of the wide query, so
-  // that no flop drives more than GRANT_FANOUT multiplexer inputs (one
-  // flop driving all WQ of them spread over the wide unit's region: a
-  // 6.3 ns net on its own). The keep attribute stops Yosys from merging
-  // the identical flops.
-  logic [GREP*N-1:0] grant_rep_q;
-  for (genvar r = 0; r < GREP; r++) begin : g_grant_rep
+  // Copies of grant_q (CTRL_COPIES), so that no flop drives more than
+  // CTRL_FANOUT multiplexer inputs (one flop driving all WQ of them, spread
+  // over the wide unit's region: a 6.3 ns net on its own). The keep
+  // attribute stops Yosys from merging the identical flops.
+  logic [CTRL_COPIES*N-1:0] grant_rep_q;
+  for (genvar r = 0; r < CTRL_COPIES; r++) begin : g_grant_rep
     (* keep *)
     always_ff @(posedge clk_i) begin
       if (rst_i) grant_rep_q[r*N+:N] <= '0;
@@ -432,7 +429,7 @@ module pluecker_cascade #(
     w_tag = '0;
     for (int l = 0; l < N; l++) begin
       for (int b = 0; b < WQ; b++)
-        if (grant_rep_q[(b / GRANT_FANOUT) * N + l]) w_query[b] = w_query[b] | slot_query[l*WQ+b];
+        if (grant_rep_q[(b / CTRL_FANOUT) * N + l]) w_query[b] = w_query[b] | slot_query[l*WQ+b];
       if (grant_q[l]) w_tag = w_tag | slot_tag[l*TAG_BITS+:TAG_BITS];
     end
   end
