@@ -60,7 +60,7 @@
 // after it emptied, so the multiplexer reads the granted query.
 // Credits: the cascade mirrors the wide unit's (wcred_q, its FIFO_DEPTH
 // from the port contract): a grant takes one, an esc_* transfer returns
-// one. A granted query reaches the wide unit two clocks later, so the wide
+// one a clock later (registered, give_q). A granted query reaches the wide unit two clocks later, so the wide
 // unit holds at least as many credits as the cascade plus the queries on
 // their way: it is always ready when its input register is full (asserted
 // under ASSERT_ON).
@@ -389,11 +389,18 @@ module pluecker_cascade #(
     else if (any_req) rr_q <= gidx;
   end
 
-  // Credits: a grant takes one, an answer on esc_* returns one.
+  // Credits: a grant takes one, an answer on esc_* returns one a clock
+  // later (give_q: the output handshake, with esc_ready_i from the
+  // consumer, never reaches the counter in the same clock).
+  logic give_q;
+  always_ff @(posedge clk_i) begin
+    if (rst_i) give_q <= 1'b0;
+    else give_q <= esc_give;
+  end
   always_ff @(posedge clk_i) begin
     if (rst_i) wcred_q <= (WCT'(1) << WIDE_CREDITS) - 1'b1;
-    else if (w_take && !esc_give) wcred_q <= wcred_q >> 1;
-    else if (esc_give && !w_take) wcred_q <= {wcred_q[WCT-2:0], 1'b1};
+    else if (w_take && !give_q) wcred_q <= wcred_q >> 1;
+    else if (give_q && !w_take) wcred_q <= {wcred_q[WCT-2:0], 1'b1};
   end
 
   // The grant, registered (one-hot; control, reset) with its lane number.
