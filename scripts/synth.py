@@ -473,6 +473,17 @@ def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
     if pure in fig["extrapolation"]:  # one style: placed against units_per_chip x one unit's Fmax
         ext = fig["extrapolation"][pure]["box_tests_per_s_per_chip"]
         fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
+    # The same units, each at its one-unit median Fmax (any count, mixed
+    # arrays too): what placing them together costs.
+    counts = {"dsp": p["N_DSP"], "lut": p["N_LUT"]}
+    same = {}
+    for sp in placed:
+        if all(not c or sp in fig["extrapolation"].get(st, {}).get("fmax_mhz", {}) for st, c in counts.items()):
+            same[sp] = round(sum(c * fig["extrapolation"][st]["fmax_mhz"][sp] * 1e6
+                                 for st, c in counts.items() if c))
+    if same:
+        fig["same_units_alone"] = same
+        fig["of_same_units_alone"] = {sp: round(placed[sp] / v, 3) for sp, v in same.items()}
     return fig
 
 
@@ -563,6 +574,11 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             if a.get("of_extrapolation"):
                 line += " = " + ", ".join(f"{r:.0%}" for r in a["of_extrapolation"].values()) + (
                     " of the one-unit extrapolation")
+            if a.get("of_same_units_alone"):
+                line += "; " + ", ".join(f"{r:.0%}" for r in a["of_same_units_alone"].values()) + (
+                    " of the same units at their one-unit Fmax")
+            elif not a.get("extrapolation"):
+                line += " (no one-unit summary in this --out folder to compare with)"
         elif sm.get("units_per_chip"):
             chip = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in sm["box_tests_per_s_per_chip"].items())
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"

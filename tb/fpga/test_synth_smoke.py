@@ -128,3 +128,31 @@ def test_cascade_yosys(tmp_path):
     bad = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2:12x12:10x10",
                           "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=600)
     assert bad.returncode == 1 and "at least as wide" in bad.stderr, bad.stderr
+
+
+def test_array_figures_same_units_alone(tmp_path):
+    """A placed mixed array against the same units at their one-unit Fmax
+    (array_figures, no tools): 2 DSP units alone at 200 MHz and 3 fabric
+    units at 100 MHz would give 700 M box tests per second; the array placed
+    at 140 MHz gives 700 M too (100 %), at speed 6 no one-unit figure (none
+    computed). A pure array is also compared with its units-per-chip
+    extrapolation."""
+    def unit(name, fmax, per_chip):
+        d = tmp_path / name
+        d.mkdir()
+        d.joinpath("summary.json").write_text(json.dumps({
+            "units_per_chip": per_chip, "fmax_mhz": {"8": {"median": fmax}},
+            "box_tests_per_s_per_chip": {"8": round(per_chip * fmax * 1e6)}}))
+    unit("16x16_p1", 200.0, 13)      # the DSP unit (16/16: "auto" is dsp)
+    unit("16x16_lut_p1", 100.0, 9)   # the fabric unit at the same widths
+    params = {"COORD_BITS": 16, "DIR_BITS": 16, "PIPELINE": 1, "N_DSP": 2, "N_LUT": 3}
+    design = synth.Design("array_2x3_16x16_p1", "ooc_array_wrapper", Path("w.sv"), "pluecker_array", params, {})
+    fig = synth.array_figures(design, {"8": {"median": 140.0}, "6": {"median": 120.0}}, tmp_path)
+    assert fig["box_tests_per_s"] == {"8": 700_000_000, "6": 600_000_000}
+    assert fig["same_units_alone"] == {"8": 700_000_000}
+    assert fig["of_same_units_alone"] == {"8": 1.0}
+    assert "of_extrapolation" not in fig  # mixed: no units-per-chip extrapolation
+    pure = synth.Design("array_13x0_16x16_p1", "ooc_array_wrapper", Path("w.sv"), "pluecker_array",
+                        dict(params, N_DSP=13, N_LUT=0), {})
+    fig = synth.array_figures(pure, {"8": {"median": 100.0}}, tmp_path)
+    assert fig["of_extrapolation"] == {"8": 0.5} and fig["of_same_units_alone"] == {"8": 0.5}
