@@ -60,10 +60,10 @@
 // after it emptied, so the multiplexer reads the granted query.
 // Credits: the cascade mirrors the wide unit's (wcred_q, its FIFO_DEPTH
 // from the port contract): a grant takes one, an esc_* transfer returns
-// one a clock later (registered, give_q). A granted query reaches the wide unit two clocks later, so the wide
-// unit holds at least as many credits as the cascade plus the queries on
-// their way: it is always ready when its input register is full (asserted
-// under ASSERT_ON).
+// one a clock later (registered, give_q). A granted query reaches the
+// wide unit two clocks later, so the wide unit holds at least as many
+// credits as the cascade plus the queries on their way: it is always
+// ready when its input register is full (asserted under ASSERT_ON).
 // An escalated answer spends four more clocks than the two units' LATENCY:
 // one in its answer register, one in its slot, one in grant_q, one in the
 // input register. A lane escalates at most every other clock (its slot

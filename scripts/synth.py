@@ -457,7 +457,8 @@ def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
     placed = {sp: round(f["median"] * 1e6 * n) for sp, f in by_speed.items()}
     fig = {"units": n, "n_dsp": p["N_DSP"], "n_lut": p["N_LUT"], "box_tests_per_s": placed, "extrapolation": {}}
     pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
-    for style, count in (("dsp", p["N_DSP"]), ("lut", p["N_LUT"])):
+    counts = {"dsp": p["N_DSP"], "lut": p["N_LUT"]}
+    for style, count in counts.items():
         if not count:
             continue
         auto = "lut" if max(p["COORD_BITS"], p["DIR_BITS"]) <= MUL_LUT_MAX_BITS else "dsp"
@@ -475,12 +476,9 @@ def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
         fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
     # The same units, each at its one-unit median Fmax (any count, mixed
     # arrays too): what placing them together costs.
-    counts = {"dsp": p["N_DSP"], "lut": p["N_LUT"]}
-    same = {}
-    for sp in placed:
-        if all(not c or sp in fig["extrapolation"].get(st, {}).get("fmax_mhz", {}) for st, c in counts.items()):
-            same[sp] = round(sum(c * fig["extrapolation"][st]["fmax_mhz"][sp] * 1e6
-                                 for st, c in counts.items() if c))
+    fmax = {st: fig["extrapolation"].get(st, {}).get("fmax_mhz", {}) for st, c in counts.items() if c}
+    same = {sp: round(sum(counts[st] * f[sp] * 1e6 for st, f in fmax.items()))
+            for sp in placed if all(sp in f for f in fmax.values())}
     if same:
         fig["same_units_alone"] = same
         fig["of_same_units_alone"] = {sp: round(placed[sp] / v, 3) for sp, v in same.items()}
