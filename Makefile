@@ -359,15 +359,19 @@ endif
 #             also against the one-cascade extrapolation: place it alone first).
 #             ROUTER: nextpnr's router for whole chips (router2 by default:
 #             router1 did not converge on the 13x0 chip in 108 minutes,
-#             router2 routed it in 17). PIPELINE=1 is what the measured
-#             chips use (fpga/TIMING.md).
+#             router2 routed it in 17). PLACER: heap (analytical, the
+#             default) or static (electrostatic: places the chips heap
+#             stalls on, at a lower Fmax so far; fpga/TIMING.md). The best
+#             measured chips use PIPELINE=2 (README, fpga/TIMING.md); more
+#             nextpnr options: SYNTH_FLAGS=--nextpnr-arg=--OPTION=VALUE.
 CHIP     ?= 13x0
 ROUTER   ?= router2
+PLACER   ?= heap
 PIPELINE ?= 0
 .PHONY: chip
 chip: setup
 	$(ENV) python scripts/synth.py $(if $(CASCADE),--cascade '$(CASCADE)',--array $(CHIP) --coord-bits $(COORD_BITS) \
-	  --dir-bits $(DIR_BITS)) --pipeline $(PIPELINE) --router $(ROUTER) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
+	  --dir-bits $(DIR_BITS)) --pipeline $(PIPELINE) --router $(ROUTER) --placer $(PLACER) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
 	  --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 
 # Default widths, one seed, speed grade 8: a quick check that the RTL still

@@ -279,12 +279,15 @@ def run_yosys(yosys: str, sources: list[Path], design: Design, outdir: Path) -> 
 # nextpnr
 
 def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int,
-                freq: float, top: str = TOP, router: str = "router1") -> list[str]:
-    """nextpnr command line, run with rundir as working directory."""
+                freq: float, top: str = TOP, router: str = "router1", placer: str = "heap",
+                extra: tuple[str, ...] = ()) -> list[str]:
+    """nextpnr command line, run with rundir as working directory; extra:
+    more nextpnr options (e.g. the heap placer's weights), appended as given."""
     return [nextpnr, DEVICE_FLAG, "--package", PACKAGE, "--speed", str(speed),
             "--seed", str(seed), "--json", rel(netlist, rundir), "--top", top,
             "--out-of-context", "--freq", f"{freq:g}", "--timing-allow-fail",
-            "--router", router, "--report", "report.json", "-l", "nextpnr.log", "-q"]
+            "--placer", placer, "--router", router,
+            "--report", "report.json", "-l", "nextpnr.log", "-q", *extra]
 
 
 _SUFFIX = re.compile(r"\$CCU2_(COMB|FF)\d*$")
@@ -531,6 +534,8 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "device": DEVICE, "package": PACKAGE, "out_of_context": True,
         "target_mhz": args.freq,
         "router": args.router,
+        "placer": args.placer,
+        "nextpnr_args": args.nextpnr_args,
         "tools": tools,
         "yosys_seconds": ys["seconds"],
         "utilisation": u,
@@ -807,7 +812,7 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                            "netlist": base / "netlist.json", "top": d.top,
                            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
-                                               args.router)}
+                                               args.router, args.placer, tuple(args.nextpnr_args))}
                     name = f"{d.name} speed{speed} seed{seed}"
                     pnr_jobs.append(jobs.Job(name, "synth:run_pnr", (job,)))
                     of_design[name] = d.name
@@ -846,6 +851,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
     p.add_argument("--router", choices=("router1", "router2"), default="router1",
                    help="nextpnr router (router2 converges where router1 stalls on a congested whole chip)")
+    p.add_argument("--placer", choices=("heap", "static", "sa"), default="heap",
+                   help="nextpnr placer (heap: analytical, the default; static: electrostatic, "
+                        "finishes full chips where heap stalls; sa: annealing only, slow)")
+    p.add_argument("--nextpnr-arg", dest="nextpnr_args", action="append", default=[], metavar="OPT",
+                   help="one more nextpnr option, repeatable, e.g. --nextpnr-arg=--placer-heap-timingweight=20")
     p.add_argument("--jobs", type=int, default=2,
                    help=f"Yosys or nextpnr runs at a time on this machine (max {MAX_PARALLEL})")
     p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")

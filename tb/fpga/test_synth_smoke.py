@@ -83,12 +83,16 @@ def test_array_smoke(tmp_path):
     """A mixed two-unit pluecker_array (one unit on MULT18X18D blocks, one
     with fabric multipliers) at 8/8 through the same flow (--array 1x1,
     speed 8, one seed): both units placed and routed, the DSP unit's blocks
-    and the fabric unit's LUTs, and the array's own box tests per second."""
+    and the fabric unit's LUTs, and the array's own box tests per second.
+    Placed by nextpnr's static placer (--placer static; the unit smoke run
+    above uses heap), with one option passed through to nextpnr
+    (--nextpnr-arg, here its per-net timing in report.json)."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--array", "1x1", "--coord-bits", "8",
-                          "--dir-bits", "8", "--smoke", "--out", str(tmp_path)],
+                          "--dir-bits", "8", "--smoke", "--placer", "static",
+                          "--nextpnr-arg=--detailed-timing-report", "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --array failed:\n{res.stdout}\n{res.stderr}"
     s = json.loads((tmp_path / "array_1x1_8x8" / "summary.json").read_text())
@@ -101,6 +105,11 @@ def test_array_smoke(tmp_path):
     assert s["design"] == "pluecker_array" and (s["n_dsp"], s["n_lut"]) == (1, 1)
     (run,) = s["runs"]
     assert "error" not in run and run["fmax"] > 0, run
+    assert s["placer"] == "static" and s["nextpnr_args"] == ["--detailed-timing-report"]
+    rundir = tmp_path / "array_1x1_8x8" / "pnr" / "speed8_seed1"
+    log = (rundir / "nextpnr.log").read_text()
+    assert "Running Static placer" in log and "HeAP" not in log
+    assert "detailed_net_timings" in json.loads((rundir / "report.json").read_text())
     assert s["array"]["units"] == 2
     assert s["array"]["box_tests_per_s"]["8"] == round(s["fmax_mhz"]["8"]["median"] * 1e6 * 2)
     assert s["critical_path"]["8"]["delay_ns"] > 0, s["critical_path"]
