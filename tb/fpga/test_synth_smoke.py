@@ -115,6 +115,26 @@ def test_array_smoke(tmp_path):
     assert s["critical_path"]["8"]["delay_ns"] > 0, s["critical_path"]
 
 
+def test_synth_flag_yosys(tmp_path):
+    """One 8/8 unit through Yosys with a synth_ecp5 option passed through
+    (--synth-flag=-nolutram --no-pnr): no distributed RAM left (the output
+    FIFO in flip-flops), the option in the script and the summary; a flag
+    that is not one option word is refused before any tool runs."""
+    reason = _tools_missing()
+    if reason:
+        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
+    cmd = [sys.executable, str(REPO / "scripts" / "synth.py"), "--widths", "8x8", "--no-pnr", "--out", str(tmp_path)]
+    res = subprocess.run(cmd + ["--synth-flag=-nolutram"], capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --synth-flag failed:\n{res.stdout}\n{res.stderr}"
+    s = json.loads((tmp_path / "8x8" / "summary.json").read_text())
+    assert s["synth_flags"] == ["-nolutram"], s["synth_flags"]
+    assert "-json netlist.json -nolutram" in (tmp_path / "8x8" / "synth.ys").read_text()
+    assert s["utilisation"]["TRELLIS_DPR16X4"] == 0, s["utilisation"]
+    assert s["utilisation"]["TRELLIS_FF"] > 0, s["utilisation"]
+    bad = subprocess.run(cmd + ["--synth-flag=-top x"], capture_output=True, text=True, timeout=600)
+    assert bad.returncode == 2 and "--synth-flag" in bad.stderr, bad.stderr
+
+
 def test_cascade_yosys(tmp_path):
     """Two pluecker_cascades through Yosys (--cascade 2*2:8x8:16x16
     --no-pnr, the chip harness of several cascades): each two narrow TERNARY
