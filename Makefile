@@ -363,7 +363,8 @@ endif
 #             default) or static (electrostatic: places the chips heap
 #             stalls on, at a lower Fmax so far; fpga/TIMING.md). The best
 #             measured chips use PIPELINE=2 (README, fpga/TIMING.md); more
-#             nextpnr options: SYNTH_FLAGS=--nextpnr-arg=--OPTION=VALUE.
+#             nextpnr options: SYNTH_FLAGS=--nextpnr-arg=--OPTION=VALUE,
+#             synth_ecp5 options: SYNTH_FLAGS=--synth-flag=-nolutram.
 CHIP     ?= 13x0
 ROUTER   ?= router2
 PLACER   ?= heap
