@@ -855,7 +855,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                    help="nextpnr router (router2 converges where router1 stalls on a congested whole chip)")
     p.add_argument("--placer", choices=("heap", "static", "sa"), default="heap",
                    help="nextpnr placer (heap: analytical, the default; static: electrostatic, "
-                        "finishes full chips where heap stalls; sa: annealing only, slow)")
+                        "placed a 13x20 chip heap stalled on, at a lower Fmax; sa: annealing only)")
     p.add_argument("--synth-flag", dest="synth_flags", action="append", default=[], metavar="FLAG",
                    help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (FIFOs in "
                         "flip-flops) or --synth-flag=-nodffe; use a separate --out folder")
