@@ -375,6 +375,21 @@ chip: setup
 	  --dir-bits $(DIR_BITS)) --pipeline $(PIPELINE) --router $(ROUTER) --placer $(PLACER) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
 	  --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
 
+# make chip-effective   each chip's useful box tests per second on every
+#             scene (REPORT_SCENES, REPORT_SIZE): its raw rate / (1 + the
+#             extra box tests of its answers), cascades also limited by
+#             their wide units (scripts/chip_effective.py). CHIPS: summary
+#             folders of placed chips (make chip) or of one unit / one
+#             cascade (extrapolated); default every out/synth/array_* and
+#             cascade_* summary. A minute or two at 128x128 (the dragon the
+#             longest). Output: out/chip-effective/.
+CHIPS ?= $(patsubst %/summary.json,%,$(wildcard $(OUT)/synth/array_*/summary.json $(OUT)/synth/cascade_*/summary.json))
+.PHONY: chip-effective
+chip-effective: build
+	@test -n "$(strip $(CHIPS))" || { echo "chip-effective: no chip summary in $(OUT)/synth (make chip first, or give CHIPS=...)" >&2; exit 2; }
+	$(ENV) python scripts/chip_effective.py --cli $(CLI) --scenes $(REPORT_SCENES) --size $(REPORT_SIZE) \
+	  --jobs $(JOBS) --out $(OUT)/chip-effective $(CHIPS)
+
 # Default widths, one seed, speed grade 8: a quick check that the RTL still
 # synthesises, places and routes (out/synth-smoke/).
 synth-smoke: setup

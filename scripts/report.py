@@ -38,10 +38,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import jobs  # noqa: E402  (scripts/jobs.py: here or on a Dask cluster)
 import report_lib as rl  # noqa: E402
-from report_lib import ROOT, fmt, say, table  # noqa: E402
-
-SHARED_SCENES = ROOT.parent / "shared" / "scenes"
-
+from report_lib import ROOT, fmt, say, scene_list, short_name, table  # noqa: E402
 
 def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -70,23 +67,6 @@ def parse_args(argv):
                         "float units' work (the narrowest such width per scene is compared)")
     p.add_argument("--from-json", help="redo hardware, plots and HTML from an earlier report.json (no runs)")
     return p.parse_args(argv)
-
-
-def scene_list(spec: str) -> list[str]:
-    if spec != "auto":
-        return [s for s in spec.split(",") if s]
-    scenes = ["teapot", "spheres"]
-    if SHARED_SCENES.is_dir():
-        files = sorted(f for f in SHARED_SCENES.iterdir() if f.suffix.lower() in (".obj", ".ply"))
-        scenes += [os.path.relpath(f, ROOT) for f in files]
-        say(f"report: scenes from {SHARED_SCENES}: {', '.join(f.name for f in files) or 'none'}")
-    else:
-        say(f"report: {SHARED_SCENES} absent: built-in scenes only")
-    return scenes
-
-
-def short_name(spec: str) -> str:
-    return Path(spec).name if ("/" in spec or "." in spec) else spec
 
 
 # --------------------------------------------------------------------------

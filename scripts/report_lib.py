@@ -1,9 +1,11 @@
 # SPDX-License-Identifier: MIT
-"""Helpers shared by scripts/report.py (`make report`) and
-scripts/main_report.py (the main job's short report): running the CLI with
-progress, the hardware figures of out/synth/<C>x<D>/summary.json and what
-follows from them, and a small self-contained HTML writer (tables, base64
-PNG images and matplotlib plots)."""
+"""Helpers shared by scripts/report.py (`make report`),
+scripts/main_report.py (the main job's short report) and
+scripts/chip_effective.py (`make chip-effective`): the scene list, running
+the CLI with progress, the hardware figures of
+out/synth/<C>x<D>/summary.json and what follows from them, and a small
+self-contained HTML writer (tables, base64 PNG images and matplotlib
+plots)."""
 from __future__ import annotations
 
 import base64
@@ -11,6 +13,7 @@ import html
 import io
 import json
 import math
+import os
 import subprocess
 import sys
 import time
@@ -51,6 +54,28 @@ def run(cmd: list, *, check: bool = True, capture: bool = False, env=None, cwd=R
         tail = "\n".join(((r.stdout or "") + (r.stderr or "")).strip().splitlines()[-10:])
         raise CommandFailed(f"command failed (exit {r.returncode}): {' '.join(cmd)}" + (f"\n{tail}" if tail else ""))
     return r
+
+
+SHARED_SCENES = ROOT.parent / "shared" / "scenes"
+
+
+def scene_list(spec: str, who: str = "report") -> list[str]:
+    """A comma list of scene specs, or 'auto': teapot, spheres and the
+    .obj/.ply files of ../shared/scenes/ when that folder is present."""
+    if spec != "auto":
+        return [s for s in spec.split(",") if s]
+    scenes = ["teapot", "spheres"]
+    if SHARED_SCENES.is_dir():
+        files = sorted(f for f in SHARED_SCENES.iterdir() if f.suffix.lower() in (".obj", ".ply"))
+        scenes += [os.path.relpath(f, ROOT) for f in files]
+        say(f"{who}: scenes from {SHARED_SCENES}: {', '.join(f.name for f in files) or 'none'}")
+    else:
+        say(f"{who}: {SHARED_SCENES} absent: built-in scenes only")
+    return scenes
+
+
+def short_name(spec: str) -> str:
+    return Path(spec).name if ("/" in spec or "." in spec) else spec
 
 
 def parse_widths(spec: str) -> list[tuple[int, int]]:
