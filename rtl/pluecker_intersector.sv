@@ -279,7 +279,12 @@ module pluecker_intersector #(
     if (give && !take) credits_d = {credits_q[CT-2:0], 1'b1};
     occ_d = occ_q;
     if (v4_q && !give) occ_d = {occ_q[CT-2:0], 1'b1};
-    if (give && !v4_q) occ_d = occ_q >> 1;
+    // The top bit (never set) refills itself rather than a constant 0:
+    // the same value, but Yosys then folds no synchronous reset into it, so
+    // that flop shares its slice's set/reset with the other occ_q bits
+    // (a flop with a set/reset net of its own stopped nextpnr's HeAP
+    // legaliser on a 13 + 20 unit chip; fpga/TIMING.md).
+    if (give && !v4_q) occ_d = {occ_q[CT-1], occ_q[CT-1:1]};
   end
 
   always_ff @(posedge clk_i) begin
