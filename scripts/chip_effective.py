@@ -203,9 +203,11 @@ def render_table(chips: list[Chip], scenes: list[str], rows: dict, speed: str) -
         cells.append(f"{c.rate[speed] / 1e9:.2f} G")
         for s in scenes:
             e = rows[s][c.name][speed]
-            note = f" ({e['extra_percent']:.3g} % extra" + (
-                f", {100 * e['escalated']:.0f} % escalated" if "escalated" in e else "") + (
-                ", wide saturated" if e.get("wide_saturated") else "") + ")"
+            x = e["extra_percent"]
+            note = f" ({x:.3g} % extra" if x < 100 else f" ({x:,.0f} % extra"
+            if "escalated" in e:
+                note += f", {100 * e['escalated']:.0f} % escalated"
+            note += ", wide saturated)" if e.get("wide_saturated") else ")"
             cells.append(f"{e['effective'] / 1e9:.2f} G{note}")
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines)
@@ -218,11 +220,12 @@ def plot(chips: list[Chip], scenes: list[str], rows: dict, speed: str, path: Pat
     bw = 0.8 / max(1, len(shown))
     for i, c in enumerate(shown):
         xs = [k + (i - (len(shown) - 1) / 2) * bw for k in range(len(scenes))]
-        ax.bar(xs, [rows[s][c.name][speed]["effective"] / 1e9 for s in scenes], bw, label=c.name)
+        ax.bar(xs, [rows[s][c.name][speed]["effective"] / 1e9 for s in scenes], bw, label=c.name,
+               hatch=None if c.placed else "//", edgecolor="white" if c.placed else "black", linewidth=0.3)
     ax.set_xticks(range(len(scenes)), [rl.short_name(s) for s in scenes])
     ax.set_ylabel(f"effective box tests/s per chip (G), speed {speed}")
-    ax.set_title("Useful box tests per second: raw rate / (1 + extra box tests)")
-    ax.legend(fontsize=7, loc="upper right")
+    ax.set_title("Useful box tests per second: raw rate / (1 + extra box tests); hatched: extrapolated")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
 
@@ -240,7 +243,7 @@ def main(argv) -> int:
         if c.width != wide and not (c.width[0] <= wide[0] and c.width[1] <= wide[1]):
             raise BadInput(f"{c.source}: width {width_name(c.width)} is wider than the wide width "
                            f"{width_name(wide)}: give --wide")
-    narrow = sorted({width_name(c.width) for c in chips if c.width != wide}, key=lambda w: tuple(map(int, w.split("x"))))
+    narrow = [width_name(w) for w in sorted({c.width for c in chips if c.width != wide})]
     # `pluecker cascade` needs a narrow width; with every chip at the wide
     # width only the wide unit's figure is used, so any narrower one does.
     run_narrow = narrow or [width_name((max(2, wide[0] // 2), max(2, wide[1] // 2)))]
@@ -258,7 +261,8 @@ def main(argv) -> int:
                                        (args.cli, s, run_narrow, width_name(wide), args.size, threads, out))
                               for s in scenes], label="chip-effective", local_workers=args.jobs,
                              journal=out / "jobs.jsonl",
-                             summary=lambda j: f"{j['triangles']:,} triangles, {j['reference']['box_tests']:,} box tests")
+                             summary=lambda j: (f"{j['triangles']:,} triangles, "
+                                                f"{j['reference']['box_tests']:,} box tests"))
     except jobs.JobsFailed as e:
         raise SystemExit(f"chip-effective: {e}") from None
     speeds = sorted({sp for c in chips for sp in c.rate}, key=int)
@@ -290,10 +294,14 @@ def main(argv) -> int:
         plot(chips, scenes, rows, sp, out / f"effective_speed{sp}.png")
     (out / "effective.md").write_text("\n".join(md))
     print("\n".join(md))
-    best = {s: max((c for c in chips if speeds[-1] in c.rate),
-                   key=lambda c: rows[s][c.name][speeds[-1]]["effective"]).name for s in scenes}
-    for s, b in best.items():
-        say(f"chip-effective: {rl.short_name(s)}: best at speed {speeds[-1]}: {b}")
+    sp = speeds[-1]
+    for s in scenes:
+        for which, placed in (("placed", True), ("extrapolated", False)):
+            pool = [c for c in chips if c.placed == placed and sp in c.rate]
+            if pool:
+                b = max(pool, key=lambda c: rows[s][c.name][sp]["effective"])
+                say(f"chip-effective: {rl.short_name(s)}, speed {sp}: best {which}: {b.name}, "
+                    f"{rows[s][b.name][sp]['effective'] / 1e9:.2f} G")
     say(f"chip-effective: wrote {rl.rel(out / 'effective.json')}, effective.md, "
         + ", ".join(f"effective_speed{sp}.png" for sp in speeds))
     return 0
