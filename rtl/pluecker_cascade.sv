@@ -399,7 +399,9 @@ module pluecker_cascade #(
   end
   always_ff @(posedge clk_i) begin
     if (rst_i) wcred_q <= (WCT'(1) << WIDE_CREDITS) - 1'b1;
-    else if (w_take && !give_q) wcred_q <= wcred_q >> 1;
+    // the top bit (never set, a_wcred_top) refills itself rather than a
+    // constant 0, so Yosys folds no set/reset of its own into its flop
+    else if (w_take && !give_q) wcred_q <= {wcred_q[WCT-1], wcred_q[WCT-1:1]};
     else if (give_q && !w_take) wcred_q <= {wcred_q[WCT-2:0], 1'b1};
   end
 
