@@ -29,7 +29,7 @@ from the contract's.
 
 Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary;
 --mul-style and --pipeline other than the defaults add _<style> and _p<P>
-to the directory name), out/synth/<unit>[_cons]_dsp<M>/summary.json for a
+to the directory name, each --synth-flag=-<option> adds _<option>), out/synth/<unit>[_cons]_dsp<M>/summary.json for a
 binary32 unit (--mul-dsp M, --conservative 1). `--no-pnr` stops after Yosys
 (utilisation only).
 
@@ -748,14 +748,18 @@ def design_of(spec: tuple, args) -> Design:
     ("local", K, D, G) (plain data, so that a job carries it to a worker)."""
     kind, *size = spec
     if kind == "cascade":
-        return cascade_design(*size, args)
-    if kind == "array":
-        return array_design(*size, args)
-    if kind == "local":
-        return local_design(*size, args)
-    if kind == "float":
-        return float_design(args)
-    return global_design(*size, args)
+        d = cascade_design(*size, args)
+    elif kind == "array":
+        d = array_design(*size, args)
+    elif kind == "local":
+        d = local_design(*size, args)
+    elif kind == "float":
+        d = float_design(args)
+    else:
+        d = global_design(*size, args)
+    # another netlist, another folder: -nolutram -> <name>_nolutram
+    d.name += "".join("_" + flag.lstrip("-") for flag in args.synth_flags)
+    return d
 
 
 def synth_one(spec: tuple, args, yosys: str, sources: list[Path]) -> dict:
@@ -858,7 +862,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "placed a 13x20 chip heap stalled on, at a lower Fmax; sa: annealing only)")
     p.add_argument("--synth-flag", dest="synth_flags", action="append", default=[], metavar="FLAG",
                    help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (FIFOs in "
-                        "flip-flops) or --synth-flag=-nodffe; use a separate --out folder")
+                        "flip-flops) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")
     p.add_argument("--nextpnr-arg", dest="nextpnr_args", action="append", default=[], metavar="OPT",
                    help="one more nextpnr option, repeatable, e.g. --nextpnr-arg=--placer-heap-timingweight=20")
     p.add_argument("--jobs", type=int, default=2,

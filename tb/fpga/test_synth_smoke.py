@@ -126,9 +126,10 @@ def test_synth_flag_yosys(tmp_path):
     cmd = [sys.executable, str(REPO / "scripts" / "synth.py"), "--widths", "8x8", "--no-pnr", "--out", str(tmp_path)]
     res = subprocess.run(cmd + ["--synth-flag=-nolutram"], capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --synth-flag failed:\n{res.stdout}\n{res.stderr}"
-    s = json.loads((tmp_path / "8x8" / "summary.json").read_text())
+    s = json.loads((tmp_path / "8x8_nolutram" / "summary.json").read_text())  # the flag names the folder
     assert s["synth_flags"] == ["-nolutram"], s["synth_flags"]
-    assert "-json netlist.json -nolutram" in (tmp_path / "8x8" / "synth.ys").read_text()
+    assert "-json netlist.json -nolutram" in (tmp_path / "8x8_nolutram" / "synth.ys").read_text()
+    assert not (tmp_path / "8x8").exists()
     assert s["utilisation"]["TRELLIS_DPR16X4"] == 0, s["utilisation"]
     assert s["utilisation"]["TRELLIS_FF"] > 0, s["utilisation"]
     bad = subprocess.run(cmd + ["--synth-flag=-top x"], capture_output=True, text=True, timeout=600)
