@@ -249,8 +249,10 @@ def main(argv) -> int:
     run_narrow = narrow or [width_name((max(2, wide[0] // 2), max(2, wide[1] // 2)))]
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
-    scenes = rl.scene_list(args.scenes, who="chip-effective")
-    missing = [s for s in scenes if ("/" in s or "." in s) and not (ROOT / s).exists() and not Path(s).exists()]
+    # scene files as given from here; the CLI runs in the project root
+    scenes = [str(Path(s).resolve()) if ("/" in s or "." in s) and not (ROOT / s).exists() and Path(s).exists()
+              else s for s in rl.scene_list(args.scenes, who="chip-effective")]
+    missing = [s for s in scenes if ("/" in s or "." in s) and not (ROOT / s).exists()]
     if missing:
         raise BadInput("scene file(s) not found: " + ", ".join(missing))
     say(f"chip-effective: {len(chips)} chip(s), widths {', '.join(narrow) or '-'} below the wide "
