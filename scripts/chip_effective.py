@@ -67,7 +67,7 @@ class Chip:
     placed: bool
     width: tuple[int, int]
     rate: dict[str, float]
-    cascade: dict | None = None  # {"lanes": per cascade, "wide": (C, D), "wide_rate": {speed: queries/s}}
+    cascade: dict | None = None  # {"lanes": per cascade, "wide": (C, D)}
     fmax: dict[str, float] = field(default_factory=dict)
 
 
@@ -102,17 +102,11 @@ def load_chip(arg: str) -> Chip:
             rate = s["array"]["box_tests_per_s"]
             return Chip(f"{name} (placed)", where, True, _width(s), rate, fmax=fmax)
         if design == "pluecker_cascade":
-            wide, lanes = _width(s, "wide_"), int(s["n_narrow"])
-            if s.get("cascade_chip"):  # a placed chip of cascades
-                cc = s["cascade_chip"]
-                rate, cascades, placed = cc["box_tests_per_s"], int(cc["cascades"]), True
-                wide_rate = {sp: fmax[sp] * 1e6 * cascades for sp in rate}
-            else:  # one cascade, extrapolated to the cascades that fit
-                rate, placed = s["box_tests_per_s_per_chip"], False
-                wide_rate = {sp: v / lanes for sp, v in rate.items()}
+            placed = bool(s.get("cascade_chip"))  # else one cascade, extrapolated to a chip of them
+            rate = s["cascade_chip"]["box_tests_per_s"] if placed else s["box_tests_per_s_per_chip"]
             label = f"{name} ({'placed' if placed else 'extrapolated from one cascade'})"
             return Chip(label, where, placed, _width(s), rate,
-                        {"lanes": lanes, "wide": wide, "wide_rate": wide_rate}, fmax)
+                        {"lanes": int(s["n_narrow"]), "wide": _width(s, "wide_")}, fmax)
         if design == "pluecker_intersector":
             return Chip(f"{name} (extrapolated from one unit)", where, False, _width(s),
                         s["box_tests_per_s_per_chip"], fmax=fmax)
@@ -167,7 +161,7 @@ def effective(chip: Chip, figs: dict, speed: str) -> dict | None:
     if chip.cascade is None:
         return {"raw": raw, "extra_percent": f["extra"], "effective": raw / (1 + f["extra"] / 100)}
     esc = f["escalated"]
-    wide_rate = chip.cascade["wide_rate"][speed]
+    wide_rate = raw / chip.cascade["lanes"]  # one wide unit per cascade of `lanes` lanes, same clock
     served = raw if esc == 0 else min(raw, wide_rate / esc)
     return {"raw": raw, "extra_percent": f["cascade_extra"], "escalated": esc, "served": served,
             "wide_saturated": served < raw, "effective": served / (1 + f["cascade_extra"] / 100)}
@@ -196,11 +190,11 @@ def render_table(chips: list[Chip], scenes: list[str], rows: dict, speed: str) -
     head = ["chip", "width", f"raw, speed {speed}"] + [rl.short_name(s) for s in scenes]
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for c in chips:
-        cells = [c.name, f"{c.width[0]}/{c.width[1]}" + (
-            f" > {c.cascade['wide'][0]}/{c.cascade['wide'][1]}" if c.cascade else "")]
         if speed not in c.rate:
             continue
-        cells.append(f"{c.rate[speed] / 1e9:.2f} G")
+        cells = [c.name, f"{c.width[0]}/{c.width[1]}" + (
+            f" > {c.cascade['wide'][0]}/{c.cascade['wide'][1]}" if c.cascade else ""),
+                 f"{c.rate[speed] / 1e9:.2f} G"]
         for s in scenes:
             e = rows[s][c.name][speed]
             x = e["extra_percent"]
@@ -240,7 +234,7 @@ def main(argv) -> int:
         raise BadInput(f"{args.cli}: the pluecker CLI is not built (make build)")
     wide = wide_of(chips, args.wide)
     for c in chips:
-        if c.width != wide and not (c.width[0] <= wide[0] and c.width[1] <= wide[1]):
+        if not (c.width[0] <= wide[0] and c.width[1] <= wide[1]):
             raise BadInput(f"{c.source}: width {width_name(c.width)} is wider than the wide width "
                            f"{width_name(wide)}: give --wide")
     narrow = [width_name(w) for w in sorted({c.width for c in chips if c.width != wide})]
@@ -250,9 +244,9 @@ def main(argv) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     # scene files as given from here; the CLI runs in the project root
-    scenes = [str(Path(s).resolve()) if ("/" in s or "." in s) and not (ROOT / s).exists() and Path(s).exists()
+    scenes = [str(Path(s).resolve()) if rl.is_scene_file(s) and not (ROOT / s).exists() and Path(s).exists()
               else s for s in rl.scene_list(args.scenes, who="chip-effective")]
-    missing = [s for s in scenes if ("/" in s or "." in s) and not (ROOT / s).exists()]
+    missing = [s for s in scenes if rl.is_scene_file(s) and not (ROOT / s).exists()]
     if missing:
         raise BadInput("scene file(s) not found: " + ", ".join(missing))
     say(f"chip-effective: {len(chips)} chip(s), widths {', '.join(narrow) or '-'} below the wide "

@@ -40,6 +40,7 @@ import jobs  # noqa: E402  (scripts/jobs.py: here or on a Dask cluster)
 import report_lib as rl  # noqa: E402
 from report_lib import ROOT, fmt, say, scene_list, short_name, table  # noqa: E402
 
+
 def parse_args(argv):
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--cli", default=str(ROOT / "build" / "model" / "pluecker"), help="the pluecker CLI")

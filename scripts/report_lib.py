@@ -74,8 +74,13 @@ def scene_list(spec: str, who: str = "report") -> list[str]:
     return scenes
 
 
+def is_scene_file(spec: str) -> bool:
+    """A mesh file's path, not a built-in scene (teapot, spheres, sphere:N)."""
+    return "/" in spec or "." in spec
+
+
 def short_name(spec: str) -> str:
-    return Path(spec).name if ("/" in spec or "." in spec) else spec
+    return Path(spec).name if is_scene_file(spec) else spec
 
 
 def parse_widths(spec: str) -> list[tuple[int, int]]:

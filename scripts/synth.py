@@ -29,9 +29,9 @@ from the contract's.
 
 Machine-readable result: out/synth/<C>x<D>/summary.json (see write_summary;
 --mul-style and --pipeline other than the defaults add _<style> and _p<P>
-to the directory name, each --synth-flag=-<option> adds _<option>), out/synth/<unit>[_cons]_dsp<M>/summary.json for a
-binary32 unit (--mul-dsp M, --conservative 1). `--no-pnr` stops after Yosys
-(utilisation only).
+to the directory name, each --synth-flag=-<option> adds _<option>),
+out/synth/<unit>[_cons]_dsp<M>/summary.json for a binary32 unit (--mul-dsp
+M, --conservative 1). `--no-pnr` stops after Yosys (utilisation only).
 
 The local unit (--local, the local port contract
 rtl/pluecker_local_contract.json): --local-widths KxDxG[,...] (default
