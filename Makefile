@@ -354,9 +354,12 @@ endif
 #             takes nextpnr minutes to an hour per seed and grade on 2 cores.
 #             CASCADE=[M*]N:CxD:WCxWD places M pluecker_cascades instead (N
 #             narrow TERNARY lanes at CxD, one wide unit at WCxWD each; e.g.
-#             2:8x8:16x16, a few minutes, or a chip of them, 11*2:8x8:16x16):
-#             out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>/ (a chip of them
-#             also against the one-cascade extrapolation: place it alone first).
+#             2:8x8:16x16, a few minutes, or a chip of them, 11*2:8x8:16x16;
+#             CASCADE=[M*]N:CxD:WCxWD+W adds W plain wide units on the
+#             MULT18X18D the cascades leave over, e.g. 4*2:8x8:16x16+9):
+#             out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>[_w<W>]/ (a chip of
+#             them also against the one-cascade extrapolation: place it alone
+#             first).
 #             ROUTER: nextpnr's router for whole chips (router2 by default:
 #             router1 did not converge on the 13x0 chip in 108 minutes,
 #             router2 routed it in 17). PLACER: heap (analytical, the

@@ -5,7 +5,13 @@
 // input registered once on its way in and every output once on its way
 // out, so that every timed path starts and ends at a flip-flop and nextpnr
 // (--out-of-context) needs no pins. Lane m*N_NARROW + l is lane l of
-// cascade m; escalation stream m is cascade m's esc_*. Timing and
+// cascade m; escalation stream m is cascade m's esc_*. With N_WIDE > 0
+// the chip also holds N_WIDE plain wide units (a pluecker_array of
+// N_WIDE MULT18X18D units at the wide format, conservative), on lanes
+// M*N_NARROW .. M*N_NARROW+N_WIDE-1: they take the tag and the wide query
+// of their payload (the narrow fields are unused) and answer on their
+// out_* lanes; so a chip that leaves multiplier blocks over after its
+// cascades puts them to work as further wide units. Timing and
 // utilisation only: the extra register stage delays the ready bits by a
 // cycle, so the harness does not keep the valid/ready contract. Its
 // flip-flops are named ooc_*_q (counted apart from the cascades'); the
@@ -21,8 +27,10 @@ module ooc_cascade_wrapper #(
     parameter int WIDE_DIR_BITS = 16,
     parameter int TAG_BITS = 16,
     parameter int PIPELINE = 0,
+    parameter int N_WIDE = 0,  // plain wide units beside the cascades
     localparam int M = N_CASCADES,
-    localparam int N = M * N_NARROW,  // lanes in all
+    localparam int NL = M * N_NARROW,  // cascade lanes
+    localparam int N = NL + N_WIDE,  // lanes in all
     localparam int LANE_BITS = (N_NARROW > 1) ? $clog2(N_NARROW) : 1,
     // The query payload of all lanes: narrow and wide class, origin,
     // direction, end, end valid, box.
@@ -59,6 +67,9 @@ module ooc_cascade_wrapper #(
 
   if (N_CASCADES < 1) begin : g_bad_m
     $error("ooc_cascade_wrapper: parameter N_CASCADES must be at least 1");
+  end
+  if (N_WIDE < 0) begin : g_bad_w
+    $error("ooc_cascade_wrapper: parameter N_WIDE must not be negative");
   end
 
   logic ooc_rst_q;
@@ -148,6 +159,38 @@ module ooc_cascade_wrapper #(
         .esc_hit_o(dut_esc_hit[m])
     );
     assign dut_esc_tag[m*EW+:EW] = {esc_lane, esc_tag};
+  end
+
+  if (N_WIDE > 0) begin : g_wide
+    // Plain wide units: lanes NL.., the wide fields of their payloads.
+    wire unused_narrow = ^{cls[N*3-1:NL*3], org[N*NC3-1:NL*NC3], dir[N*ND3-1:NL*ND3],
+                           fin[N*NC3-1:NL*NC3], finv[N-1:NL], lo[N*NC3-1:NL*NC3], hi[N*NC3-1:NL*NC3]};
+    pluecker_array #(
+        .N_DSP(N_WIDE),
+        .N_LUT(0),
+        .COORD_BITS(WIDE_COORD_BITS),
+        .DIR_BITS(WIDE_DIR_BITS),
+        .TAG_BITS(TAG_BITS),
+        .CONSERVATIVE(1),
+        .PIPELINE(PIPELINE)
+    ) u_wide (
+        .clk_i(clk_i),
+        .rst_i(ooc_rst_q),
+        .in_valid_i(ooc_in_valid_q[N-1:NL]),
+        .in_ready_o(dut_in_ready[N-1:NL]),
+        .in_tag_i(tag[N*TAG_BITS-1:NL*TAG_BITS]),
+        .ray_class_i(wcls[N*3-1:NL*3]),
+        .ray_org_i(worg[N*WC3-1:NL*WC3]),
+        .ray_dir_i(wdir[N*WD3-1:NL*WD3]),
+        .ray_end_i(wfin[N*WC3-1:NL*WC3]),
+        .ray_end_valid_i(wfinv[N-1:NL]),
+        .box_min_i(wlo[N*WC3-1:NL*WC3]),
+        .box_max_i(whi[N*WC3-1:NL*WC3]),
+        .out_valid_o(dut_out_valid[N-1:NL]),
+        .out_ready_i(ooc_out_ready_q[N-1:NL]),
+        .out_tag_o(dut_out_tag[N*TAG_BITS-1:NL*TAG_BITS]),
+        .out_hit_o(dut_out_hit[N-1:NL])
+    );
   end
 
   assign in_ready_o = ooc_in_ready_q;

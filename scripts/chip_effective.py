@@ -17,6 +17,8 @@ SAH BVH, DSA order, N x N image):
       (the wide unit takes one query per clock: it saturates when
       L x the escalated share exceeds one), then
       served / (1 + extra(cascade))
+      plus, for W plain wide units beside the cascades (--cascade ...+W),
+      their rate / (1 + extra(wide alone))
 
 The extra work and the escalated share come from one `pluecker cascade` run
 per scene (every answer checked against the exact test; narrow widths: all
@@ -67,7 +69,7 @@ class Chip:
     placed: bool
     width: tuple[int, int]
     rate: dict[str, float]
-    cascade: dict | None = None  # {"lanes": per cascade, "wide": (C, D)}
+    cascade: dict | None = None  # {"lanes": per cascade, "wide": (C, D), "cascades": M, "plain": W}
     fmax: dict[str, float] = field(default_factory=dict)
 
 
@@ -104,9 +106,12 @@ def load_chip(arg: str) -> Chip:
         if design == "pluecker_cascade":
             placed = bool(s.get("cascade_chip"))  # else one cascade, extrapolated to a chip of them
             rate = s["cascade_chip"]["box_tests_per_s"] if placed else s["box_tests_per_s_per_chip"]
+            plain = int(s["cascade_chip"].get("wide_units", 0)) if placed else 0
+            cascades = int(s["cascade_chip"]["cascades"]) if placed else 1
             label = f"{name} ({'placed' if placed else 'extrapolated from one cascade'})"
             return Chip(label, where, placed, _width(s), rate,
-                        {"lanes": int(s["n_narrow"]), "wide": _width(s, "wide_")}, fmax)
+                        {"lanes": int(s["n_narrow"]), "wide": _width(s, "wide_"), "cascades": cascades,
+                         "plain": plain}, fmax)
         if design == "pluecker_intersector":
             return Chip(f"{name} (extrapolated from one unit)", where, False, _width(s),
                         s["box_tests_per_s_per_chip"], fmax=fmax)
@@ -161,10 +166,17 @@ def effective(chip: Chip, figs: dict, speed: str) -> dict | None:
     if chip.cascade is None:
         return {"raw": raw, "extra_percent": f["extra"], "effective": raw / (1 + f["extra"] / 100)}
     esc = f["escalated"]
-    wide_rate = raw / chip.cascade["lanes"]  # one wide unit per cascade of `lanes` lanes, same clock
-    served = raw if esc == 0 else min(raw, wide_rate / esc)
-    return {"raw": raw, "extra_percent": f["cascade_extra"], "escalated": esc, "served": served,
-            "wide_saturated": served < raw, "effective": served / (1 + f["cascade_extra"] / 100)}
+    lanes, plain = chip.cascade["cascades"] * chip.cascade["lanes"], chip.cascade["plain"]
+    lane_rate = raw * lanes / (lanes + plain)  # every lane and plain unit at the same clock
+    plain_rate = raw - lane_rate
+    wide_rate = lane_rate / chip.cascade["lanes"]  # one wide unit per cascade of `lanes` lanes
+    served = lane_rate if esc == 0 else min(lane_rate, wide_rate / esc)
+    e = {"raw": raw, "extra_percent": f["cascade_extra"], "escalated": esc, "served": served,
+         "wide_saturated": served < lane_rate, "effective": served / (1 + f["cascade_extra"] / 100)}
+    if plain:
+        x = figs[width_name(chip.cascade["wide"])]["extra"]
+        e.update(plain_rate=plain_rate, plain_extra_percent=x, effective=e["effective"] + plain_rate / (1 + x / 100))
+    return e
 
 
 def parse_args(argv):
@@ -193,7 +205,9 @@ def render_table(chips: list[Chip], scenes: list[str], rows: dict, speed: str) -
         if speed not in c.rate:
             continue
         cells = [c.name, f"{c.width[0]}/{c.width[1]}" + (
-            f" > {c.cascade['wide'][0]}/{c.cascade['wide'][1]}" if c.cascade else ""),
+            f" > {c.cascade['wide'][0]}/{c.cascade['wide'][1]}" if c.cascade else "") + (
+            f", + {c.cascade['plain']} x {c.cascade['wide'][0]}/{c.cascade['wide'][1]}"
+            if c.cascade and c.cascade["plain"] else ""),
                  f"{c.rate[speed] / 1e9:.2f} G"]
         for s in scenes:
             e = rows[s][c.name][speed]
@@ -271,14 +285,17 @@ def main(argv) -> int:
             "raw": "box tests (cascades: lane queries) per second per chip from the summary",
             "extra_percent": "100 * (box tests - exact answers' box tests) / exact answers' box tests "
                              "(pluecker cascade; cascades: the cascade's answers)",
-            "served": "cascades: min(raw, wide unit rate / escalated share)",
-            "effective": "(served or raw) / (1 + extra_percent / 100)",
+            "served": "cascades: min(lane rate, wide unit rate / escalated share)",
+            "plain_rate": "cascade chips with plain wide units beside: their part of raw",
+            "effective": "(served or raw) / (1 + extra_percent / 100) "
+                         "[+ plain_rate / (1 + plain_extra_percent / 100)]",
         },
         "size": args.size, "wide": width_name(wide),
         "chips": [{"name": c.name, "summary": c.source, "placed": c.placed, "width": width_name(c.width),
-                   "raw": c.rate, "fmax_mhz": c.fmax, **({"cascade": {"lanes": c.cascade["lanes"],
-                                                                     "wide": width_name(c.cascade["wide"])}}
-                                                          if c.cascade else {})} for c in chips],
+                   "raw": c.rate, "fmax_mhz": c.fmax,
+                   **({"cascade": {"lanes": c.cascade["lanes"], "wide": width_name(c.cascade["wide"]),
+                                   "cascades": c.cascade["cascades"], "plain_wide_units": c.cascade["plain"]}}
+                      if c.cascade else {})} for c in chips],
         "scenes": {s: {"triangles": j["triangles"], "reference_box_tests": j["reference"]["box_tests"],
                        "chips": rows[s]} for s, j in zip(scenes, runs.values())},
     }

@@ -46,10 +46,11 @@ computes it for the global unit) and box tests per second per chip
 (units x CHILDREN x Fmax).
 
 --array NDSPxNLUT places pluecker_array (fpga/ooc_array_wrapper.sv; `make
-chip`), --cascade [M*]N:CxD:WCxWD M pluecker_cascades (default 1): N narrow
-TERNARY lanes each and the wide unit they escalate to
-(fpga/ooc_cascade_wrapper.sv); results in out/synth/array_*/ and
-out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>/.
+chip`), --cascade [M*]N:CxD:WCxWD[+W] M pluecker_cascades (default 1): N
+narrow TERNARY lanes each and the wide unit they escalate to, and W plain
+wide units (MULT18X18D) beside them (fpga/ooc_cascade_wrapper.sv); results
+in out/synth/array_*/ and
+out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>[_w<W>]/.
 """
 from __future__ import annotations
 
@@ -495,8 +496,11 @@ def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
     the same cascade placed alone, out/cascade_<N>_..., when there is one)."""
     p, f = design.params, design.fields
     lanes = p["N_CASCADES"] * p["N_NARROW"]
-    placed = {sp: round(st["median"] * 1e6 * lanes) for sp, st in by_speed.items()}
-    fig = {"cascades": p["N_CASCADES"], "lanes": lanes, "box_tests_per_s": placed}
+    plain = p.get("N_WIDE", 0)
+    placed = {sp: round(st["median"] * 1e6 * (lanes + plain)) for sp, st in by_speed.items()}
+    fig = {"cascades": p["N_CASCADES"], "lanes": lanes, "wide_units": plain, "box_tests_per_s": placed}
+    if plain:  # the one-cascade extrapolation is of another chip
+        return fig
     one = out / (f"cascade_{p['N_NARROW']}_{f['coord_bits']}x{f['dir_bits']}_{f['wide_coord_bits']}x"
                  f"{f['wide_dir_bits']}" + (f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""))
     try:
@@ -550,7 +554,7 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
     }
     if design.fields.get("unit") == "array":
         summary["array"] = array_figures(design, by_speed, Path(args.out))
-    if design.fields.get("unit") == "cascade" and design.params["N_CASCADES"] > 1:
+    if design.fields.get("unit") == "cascade" and (design.params["N_CASCADES"] > 1 or design.params.get("N_WIDE")):
         summary["cascade_chip"] = cascade_chip_figures(design, by_speed, Path(args.out))
     with open(base / "summary.json", "w") as f:
         json.dump(summary, f, indent=2)
@@ -703,44 +707,56 @@ def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
 CASCADE_WRAPPER = ROOT / "fpga" / "ooc_cascade_wrapper.sv"
 
 
-def parse_cascade(text: str) -> tuple[int, int, int, int, int, int]:
-    """'[M*]N:CxD:WCxWD': M (default 1) pluecker_cascades, each of N narrow
-    CxD lanes and one wide WCxWD unit, e.g. 2:8x8:16x16 or 11*2:8x8:16x16."""
-    m = re.fullmatch(r"(?:(\d+)\*)?(\d+):(\d+)x(\d+):(\d+)x(\d+)", text.strip())
+def parse_cascade(text: str) -> tuple[int, int, int, int, int, int, int]:
+    """'[M*]N:CxD:WCxWD[+W]': M (default 1) pluecker_cascades, each of N
+    narrow CxD lanes and one wide WCxWD unit, and W (default 0) plain wide
+    units beside them, e.g. 2:8x8:16x16, 11*2:8x8:16x16 or 4*2:8x8:16x16+9."""
+    m = re.fullmatch(r"(?:(\d+)\*)?(\d+):(\d+)x(\d+):(\d+)x(\d+)(?:\+(\d+))?", text.strip())
     if not m:
-        raise FlowError(f"--cascade '{text}': expected [M*]N:CxD:WCxWD, e.g. 2:8x8:16x16 or 11*2:8x8:16x16")
+        raise FlowError(f"--cascade '{text}': expected [M*]N:CxD:WCxWD[+W], e.g. 2:8x8:16x16, "
+                        "11*2:8x8:16x16 or 4*2:8x8:16x16+9")
     count = int(m.group(1)) if m.group(1) else 1
-    n, nc, nd, wc, wd = (int(g) for g in m.groups()[1:])
+    n, nc, nd, wc, wd = (int(g) for g in m.groups()[1:6])
+    plain = int(m.group(7)) if m.group(7) else 0
     if count < 1:
         raise FlowError(f"--cascade '{text}': at least one cascade")
     if n < 1:
         raise FlowError(f"--cascade '{text}': at least one narrow lane")
     if wc < nc or wd < nd:
         raise FlowError(f"--cascade '{text}': the wide format must be at least as wide as the narrow one")
-    return count, n, nc, nd, wc, wd
+    return count, n, nc, nd, wc, wd, plain
 
 
-def cascade_design(count: int, n: int, nc: int, nd: int, wc: int, wd: int, args) -> Design:
+def cascade_design(count: int, n: int, nc: int, nd: int, wc: int, wd: int, plain: int, args) -> Design:
     """count pluecker_cascades (independent; a chip of them when count > 1),
     each of N narrow TERNARY units and one wide unit with their "auto"
-    multipliers (the port contract's rows give the MULT18X18D count);
-    count x N box tests per clock (the lanes), the wide units' work extra."""
+    multipliers (the port contract's rows give the MULT18X18D count), and
+    `plain` wide units beside them (MULT18X18D); count x N + plain box tests
+    per clock (the lanes and the plain units), the wide units' work extra."""
     try:
         narrow, wide = contract.row(nc, nd, "auto", args.pipeline), contract.row(wc, wd, "auto", args.pipeline)
+        plain_row = contract.row(wc, wd, "dsp", args.pipeline) if plain else None
     except contract.ContractError as e:
         raise FlowError(str(e)) from None
     row = {"latency": narrow["latency"], "fifo_depth": narrow["fifo_depth"],
-           "mult18x18d": count * (n * narrow["mult18x18d"] + wide["mult18x18d"]),
+           "mult18x18d": count * (n * narrow["mult18x18d"] + wide["mult18x18d"])
+           + (plain * plain_row["mult18x18d"] if plain else 0),
            "multiplier": (f"{count} x " if count > 1 else "")
-           + f"{n} narrow units ({narrow['multiplier']}), one wide ({wide['multiplier']})"}
+           + f"{n} narrow units ({narrow['multiplier']}), one wide ({wide['multiplier']})"
+           + (f"; {plain} plain wide units ({plain_row['multiplier']})" if plain else "")}
     many = f"{count}x" if count > 1 else ""
-    name = f"cascade_{many}{n}_{nc}x{nd}_{wc}x{wd}" + (f"_p{args.pipeline}" if args.pipeline else "")
+    name = (f"cascade_{many}{n}_{nc}x{nd}_{wc}x{wd}" + (f"_w{plain}" if plain else "")
+            + (f"_p{args.pipeline}" if args.pipeline else ""))
     params = {"N_CASCADES": count, "N_NARROW": n, "NARROW_COORD_BITS": nc, "NARROW_DIR_BITS": nd,
               "WIDE_COORD_BITS": wc, "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline}
+    if plain:
+        params["N_WIDE"] = plain
     return Design(name, "ooc_cascade_wrapper", CASCADE_WRAPPER, "pluecker_cascade", params, row,
-                  {"config": f"cascade {many}{n}x{nc}x{nd}>{wc}x{wd}", "unit": "cascade", "name": name,
+                  {"config": f"cascade {many}{n}x{nc}x{nd}>{wc}x{wd}" + (f"+{plain}x{wc}x{wd}" if plain else ""),
+                   "unit": "cascade", "name": name,
                    "coord_bits": nc, "dir_bits": nd, "wide_coord_bits": wc, "wide_dir_bits": wd,
-                   "pipeline": args.pipeline, "n_cascades": count, "n_narrow": n}, tests_per_clock=count * n)
+                   "pipeline": args.pipeline, "n_cascades": count, "n_narrow": n, "n_wide_units": plain},
+                  tests_per_clock=count * n + plain)
 
 
 def design_of(spec: tuple, args) -> Design:
@@ -879,9 +895,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                    help="NDSPxNLUT: pluecker_array of NDSP units with MULT18X18D and NLUT in fabric at "
                         "--coord-bits/--dir-bits (e.g. 13x0, 0x38, 1x1); box tests per clock = NDSP + NLUT")
     p.add_argument("--cascade", default=None,
-                   help="[M*]N:CxD:WCxWD: M (default 1) pluecker_cascades of N narrow TERNARY lanes at CxD "
-                        "escalating to one wide unit at WCxWD (e.g. 2:8x8:16x16, or a chip of them: "
-                        "11*2:8x8:16x16); box tests per clock = M x N")
+                   help="[M*]N:CxD:WCxWD[+W]: M (default 1) pluecker_cascades of N narrow TERNARY lanes "
+                        "at CxD escalating to one wide unit at WCxWD (e.g. 2:8x8:16x16, or a chip of them: "
+                        "11*2:8x8:16x16), and W (default 0) plain wide units beside them on MULT18X18D "
+                        "(4*2:8x8:16x16+9); box tests per clock = M x N + W")
     p.add_argument("--out", default=None, help="output directory (default out/synth)")
     args = p.parse_args(argv)
     if args.local and args.unit != "fixed":

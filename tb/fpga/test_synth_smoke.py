@@ -137,27 +137,31 @@ def test_synth_flag_yosys(tmp_path):
 
 
 def test_cascade_yosys(tmp_path):
-    """Two pluecker_cascades through Yosys (--cascade 2*2:8x8:16x16
-    --no-pnr, the chip harness of several cascades): each two narrow TERNARY
-    lanes with fabric multipliers and a shared wide 16/16 unit on MULT18X18D
-    blocks, the port contract's counts (12 blocks a cascade: the wide
-    unit's alone)."""
+    """Two pluecker_cascades and one plain wide unit through Yosys
+    (--cascade 2*2:8x8:16x16+1 --no-pnr, the chip harness of several
+    cascades): each cascade two narrow TERNARY lanes with fabric multipliers
+    and a shared wide 16/16 unit on MULT18X18D blocks, the port contract's
+    counts (12 blocks a cascade: the wide unit's alone; 12 the plain
+    unit)."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
-    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2*2:8x8:16x16",
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2*2:8x8:16x16+1",
                           "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --cascade failed:\n{res.stdout}\n{res.stderr}"
-    s = json.loads((tmp_path / "cascade_2x2_8x8_16x16" / "summary.json").read_text())
+    s = json.loads((tmp_path / "cascade_2x2_8x8_16x16_w1" / "summary.json").read_text())
     import contract  # scripts/contract.py
     wide = contract.row(16, 16, "auto", 0)["mult18x18d"]
     assert contract.row(8, 8, "auto", 0)["mult18x18d"] == 0 and wide == 12
-    assert s["design"] == "pluecker_cascade" and (s["n_cascades"], s["n_narrow"]) == (2, 2), s
-    assert s["utilisation"]["MULT18X18D"] == 2 * wide, s["utilisation"]
+    assert s["design"] == "pluecker_cascade" and (s["n_cascades"], s["n_narrow"], s["n_wide_units"]) == (2, 2, 1), s
+    assert s["utilisation"]["MULT18X18D"] == 3 * wide, s["utilisation"]
     assert s["utilisation"]["CCU2C"] > 0 and s["utilisation"]["LUT4"] > 0, s["utilisation"]
     bad = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2:12x12:10x10",
                           "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=600)
     assert bad.returncode == 1 and "at least as wide" in bad.stderr, bad.stderr
+    bad = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2:8x8:16x16+",
+                          "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=600)
+    assert bad.returncode == 1 and "[M*]N:CxD:WCxWD[+W]" in bad.stderr, bad.stderr
 
 
 def test_array_figures_same_units_alone(tmp_path):

@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """scripts/chip_effective.py on hand-written summaries (a placed array at
 8/8, one 16/16 unit extrapolated, a placed chip of cascades whose wide units
-keep up and one whose wide units saturate) and a small scene: each figure
+keep up, one whose wide units saturate, and one with plain wide units beside
+its cascades) and a small scene: each figure
 follows from the summary and the `pluecker cascade` JSON the script wrote;
 unusable summaries are refused by name."""
 import json
@@ -41,12 +42,14 @@ def unit(tmp, c, d, per_chip, mhz):
         "fmax_mhz": fmax(mhz), "units_per_chip": per_chip, "box_tests_per_s_per_chip": {"8": per_chip * mhz * 1e6}})
 
 
-def cascades(tmp, m, n, c, d, mhz):
-    return write(tmp / f"cascade_{m}x{n}_{c}x{d}", {
-        "design": "pluecker_cascade", "name": f"cascade_{m}x{n}_{c}x{d}", "coord_bits": c, "dir_bits": d,
-        "wide_coord_bits": 16, "wide_dir_bits": 16, "n_narrow": n, "n_cascades": m, "pnr": True,
-        "fmax_mhz": fmax(mhz),
-        "cascade_chip": {"cascades": m, "lanes": m * n, "box_tests_per_s": {"8": m * n * mhz * 1e6}}})
+def cascades(tmp, m, n, c, d, mhz, plain=0):
+    name = f"cascade_{m}x{n}_{c}x{d}" + (f"_w{plain}" if plain else "")
+    return write(tmp / name, {
+        "design": "pluecker_cascade", "name": name, "coord_bits": c, "dir_bits": d,
+        "wide_coord_bits": 16, "wide_dir_bits": 16, "n_narrow": n, "n_cascades": m, "n_wide_units": plain,
+        "pnr": True, "fmax_mhz": fmax(mhz),
+        "cascade_chip": {"cascades": m, "lanes": m * n, "wide_units": plain,
+                         "box_tests_per_s": {"8": (m * n + plain) * mhz * 1e6}}})
 
 
 def run(args, tmp_path):
@@ -58,7 +61,8 @@ def run(args, tmp_path):
 
 def test_figures_follow_from_the_summaries(tmp_path):
     chips = [array(tmp_path, 8, 8, 29, 137.0), unit(tmp_path, 16, 16, 13, 250.0),
-             cascades(tmp_path, 6, 2, 8, 8, 120.0), cascades(tmp_path, 3, 6, 6, 6, 100.0)]
+             cascades(tmp_path, 6, 2, 8, 8, 120.0), cascades(tmp_path, 3, 6, 6, 6, 100.0),
+             cascades(tmp_path, 2, 6, 6, 6, 110.0, plain=5)]
     r = run(chips, tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "[chip-effective] [1/1] sphere:500: done in" in r.stdout  # progress
@@ -70,7 +74,7 @@ def test_figures_follow_from_the_summaries(tmp_path):
     got = res["scenes"][SCENE]["chips"]
     names = [c["name"] for c in res["chips"]]
     assert names == ["array_8x8 (placed)", "16x16 (extrapolated from one unit)", "cascade_6x2_8x8 (placed)",
-                     "cascade_3x6_6x6 (placed)"]
+                     "cascade_3x6_6x6 (placed)", "cascade_2x6_6x6_w5 (placed)"]
 
     x8 = narrow[(8, 8)]["narrow_alone"]["extra_percent"]["box_tests"]
     assert x8 > 0  # a narrow unit's false hits cost work on this scene
@@ -97,8 +101,17 @@ def test_figures_follow_from_the_summaries(tmp_path):
     assert e["effective"] == pytest.approx(3 * 100e6 / esc6 / (1 + xc6 / 100))
     assert e["effective"] < 18 * 100e6
 
+    # two such cascades (saturated) and five plain 16/16 units beside them:
+    # the lanes serve what the two wide units take, the plain units their
+    # own rate at the wide unit's extra work
+    e = got[names[4]]["8"]
+    assert e["raw"] == pytest.approx(17 * 110e6) and e["wide_saturated"]
+    assert e["served"] == pytest.approx(2 * 110e6 / esc6) and e["plain_rate"] == pytest.approx(5 * 110e6)
+    assert e["effective"] == pytest.approx(2 * 110e6 / esc6 / (1 + xc6 / 100) + 5 * 110e6 / (1 + xw / 100))
+
     md = (out / "effective.md").read_text()
     assert "| array_8x8 (placed) | 8/8 | 3.97 G |" in md and "wide saturated" in md
+    assert "| cascade_2x6_6x6_w5 (placed) | 6/6 > 16/16, + 5 x 16/16 | 1.87 G |" in md
     assert (out / "effective_speed8.png").stat().st_size > 1000
 
 
