@@ -284,9 +284,11 @@ module pluecker_cascade #(
     assign slot_query[l*WQ+:WQ] = slot_query_q;
 
     // The side FIFO of wide queries (pointers reset, contents not). A push
-    // is written one clock later from registers (data, address, and one
-    // copy of the write enable per CTRL_FANOUT bits: no net from the
-    // handshake's logic fans out to the WQ / 4 distributed-RAM blocks). An
+    // is written one clock later from registers (data, and one copy of the
+    // write enable and of the write address per CTRL_FANOUT bits: no net
+    // from the handshake's logic, and no single flop, fans out to the
+    // WQ / 4 distributed-RAM blocks; on a whole chip one address flop for
+    // all of them was the longest route). An
     // entry is read no earlier than the narrow unit's LATENCY after its
     // push, and a freed one is written only after a later push.
     logic [SIDE_AW:0] side_wr_q, side_rd_q;
@@ -314,7 +316,6 @@ module pluecker_cascade #(
     end
     assign side_full = side_occ_q[SIDE_DEPTH-1];
     logic [WQ-1:0] side_wdata_q;
-    logic [SIDE_AW-1:0] side_waddr_q;
     always_ff @(posedge clk_i) begin
       side_wdata_q <= {
         wide_ray_class_i[l*3+:3],
@@ -325,7 +326,6 @@ module pluecker_cascade #(
         wide_box_min_i[l*WC3+:WC3],
         wide_box_max_i[l*WC3+:WC3]
       };
-      side_waddr_q <= side_wr_q[SIDE_AW-1:0];
     end
     for (genvar c = 0; c < CTRL_COPIES; c++) begin : g_side
       localparam int LO = c * CTRL_FANOUT;
@@ -336,9 +336,14 @@ module pluecker_cascade #(
         if (rst_i) we_q <= 1'b0;
         else we_q <= push;
       end
+      // this chunk's copy of the delayed write address (data: read only
+      // with we_q set)
+      logic [SIDE_AW-1:0] waddr_q;
+      (* keep *)
+      always_ff @(posedge clk_i) waddr_q <= side_wr_q[SIDE_AW-1:0];
       logic [CW-1:0] mem_q[SIDE_DEPTH];
       always_ff @(posedge clk_i) begin
-        if (we_q) mem_q[side_waddr_q] <= side_wdata_q[LO+:CW];
+        if (we_q) mem_q[waddr_q] <= side_wdata_q[LO+:CW];
       end
       assign side_head[l*WQ+LO+:CW] = mem_q[side_rd_q[SIDE_AW-1:0]];
     end
