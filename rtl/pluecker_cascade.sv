@@ -288,10 +288,11 @@ module pluecker_cascade #(
     // write enable and of the write address per CTRL_FANOUT bits: no net
     // from the handshake's logic, and no single flop, fans out to the
     // WQ / 4 distributed-RAM blocks; on a whole chip one address flop for
-    // all of them was the longest route). An
+    // all of them was the longest route). Likewise each chunk reads at its
+    // own copy of the read pointer (into the slot's register). An
     // entry is read no earlier than the narrow unit's LATENCY after its
     // push, and a freed one is written only after a later push.
-    logic [SIDE_AW:0] side_wr_q, side_rd_q;
+    logic [SIDE_AW:0] side_wr_q;
     // Its occupancy, a thermometer code (bit i set: more than i entries),
     // so that "full" is a flop of its own; a read counts one clock late
     // (pop_q: the count is never below the truth, the answer path does not
@@ -303,18 +304,25 @@ module pluecker_cascade #(
     always_ff @(posedge clk_i) begin
       if (rst_i) begin
         side_wr_q <= '0;
-        side_rd_q <= '0;
         side_occ_q <= '0;
         pop_q <= 1'b0;
       end else begin
         if (push) side_wr_q <= side_wr_q + 1'b1;
-        if (pop) side_rd_q <= side_rd_q + 1'b1;
         pop_q <= pop;
         if (push && !pop_q) side_occ_q <= {side_occ_q[SIDE_DEPTH-2:0], 1'b1};
         else if (pop_q && !push) side_occ_q <= side_occ_q >> 1;
       end
     end
     assign side_full = side_occ_q[SIDE_DEPTH-1];
+`ifdef ASSERT_ON
+    // The full read pointer, for the checks alone (each chunk of the FIFO
+    // reads at its own copy of its low bits, which must agree with it).
+    logic [SIDE_AW:0] side_rd_q;
+    always_ff @(posedge clk_i) begin
+      if (rst_i) side_rd_q <= '0;
+      else if (pop) side_rd_q <= side_rd_q + 1'b1;
+    end
+`endif
     logic [WQ-1:0] side_wdata_q;
     always_ff @(posedge clk_i) begin
       side_wdata_q <= {
@@ -345,7 +353,19 @@ module pluecker_cascade #(
       always_ff @(posedge clk_i) begin
         if (we_q) mem_q[waddr_q] <= side_wdata_q[LO+:CW];
       end
-      assign side_head[l*WQ+LO+:CW] = mem_q[side_rd_q[SIDE_AW-1:0]];
+      // this chunk's copy of the read pointer (control, reset)
+      logic [SIDE_AW-1:0] raddr_q;
+      (* keep *)
+      always_ff @(posedge clk_i) begin
+        if (rst_i) raddr_q <= '0;
+        else if (pop) raddr_q <= raddr_q + 1'b1;
+      end
+      assign side_head[l*WQ+LO+:CW] = mem_q[raddr_q];
+`ifdef ASSERT_ON
+      always_ff @(posedge clk_i) begin
+        if (!rst_i) assert (raddr_q == side_rd_q[SIDE_AW-1:0]);
+      end
+`endif
     end
 
 `ifdef ASSERT_ON
