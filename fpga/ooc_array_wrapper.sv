@@ -5,7 +5,9 @@
 // and ends at a flip-flop and nextpnr (--out-of-context) needs no pins.
 // Timing and utilisation only: the extra register stage delays in_ready_o
 // by a cycle, so the harness does not keep the valid/ready contract. Its
-// flip-flops are named ooc_*_q (counted apart from the array's).
+// flip-flops are named ooc_*_q (counted apart from the array's). With
+// RST_STAGES > 0 (the array's reset tree) the harness's lane flops take
+// their reset from a kept copy per lane too, so no reset net spans the chip.
 `default_nettype none
 
 module ooc_array_wrapper #(
@@ -16,6 +18,7 @@ module ooc_array_wrapper #(
     parameter int TAG_BITS = 16,
     parameter bit CONSERVATIVE = 1,
     parameter int PIPELINE = 0,
+    parameter int RST_STAGES = 0,
     localparam int N = N_DSP + N_LUT
 ) (
     input wire clk_i,
@@ -54,18 +57,30 @@ module ooc_array_wrapper #(
   wire [N-1:0] dut_in_ready, dut_out_valid, dut_out_hit;
   wire [TW-1:0] dut_out_tag;
 
-  always_ff @(posedge clk_i) begin
-    ooc_rst_q <= rst_i;
-    if (ooc_rst_q) begin
-      ooc_in_valid_q  <= '0;
-      ooc_out_ready_q <= '0;
-      ooc_in_ready_q  <= '0;
-      ooc_out_valid_q <= '0;
-    end else begin
-      ooc_in_valid_q  <= in_valid_i;
-      ooc_out_ready_q <= out_ready_i;
-      ooc_in_ready_q  <= dut_in_ready;
-      ooc_out_valid_q <= dut_out_valid;
+  always_ff @(posedge clk_i) ooc_rst_q <= rst_i;
+
+  for (genvar l = 0; l < N; l++) begin : g_lane
+    wire lane_rst;
+    if (RST_STAGES == 0) begin : g_rst_direct
+      assign lane_rst = ooc_rst_q;
+    end else begin : g_rst_copy
+      logic ooc_lane_rst_q;
+      (* keep *)  // one per lane, not merged
+      always_ff @(posedge clk_i) ooc_lane_rst_q <= ooc_rst_q;
+      assign lane_rst = ooc_lane_rst_q;
+    end
+    always_ff @(posedge clk_i) begin
+      if (lane_rst) begin
+        ooc_in_valid_q[l]  <= 1'b0;
+        ooc_out_ready_q[l] <= 1'b0;
+        ooc_in_ready_q[l]  <= 1'b0;
+        ooc_out_valid_q[l] <= 1'b0;
+      end else begin
+        ooc_in_valid_q[l]  <= in_valid_i[l];
+        ooc_out_ready_q[l] <= out_ready_i[l];
+        ooc_in_ready_q[l]  <= dut_in_ready[l];
+        ooc_out_valid_q[l] <= dut_out_valid[l];
+      end
     end
   end
 
@@ -89,7 +104,8 @@ module ooc_array_wrapper #(
       .DIR_BITS(DIR_BITS),
       .TAG_BITS(TAG_BITS),
       .CONSERVATIVE(CONSERVATIVE),
-      .PIPELINE(PIPELINE)
+      .PIPELINE(PIPELINE),
+      .RST_STAGES(RST_STAGES)
   ) u_dut (
       .clk_i(clk_i),
       .rst_i(ooc_rst_q),

@@ -15,7 +15,11 @@
 // utilisation only: the extra register stage delays the ready bits by a
 // cycle, so the harness does not keep the valid/ready contract. Its
 // flip-flops are named ooc_*_q (counted apart from the cascades'); the
-// valid and ready bits are reset, the rest are not.
+// valid and ready bits are reset, the rest are not. RST_STAGES > 0 builds
+// a reset tree, so that no reset net spans the chip: each cascade takes
+// its rst_i from a kept chain of RST_STAGES flops of its own, the plain
+// units from theirs (pluecker_array's RST_STAGES), the harness's flops of
+// a lane or an escalation stream from a kept copy each.
 `default_nettype none
 
 module ooc_cascade_wrapper #(
@@ -28,6 +32,7 @@ module ooc_cascade_wrapper #(
     parameter int TAG_BITS = 16,
     parameter int PIPELINE = 0,
     parameter int N_WIDE = 0,  // plain wide units beside the cascades
+    parameter int RST_STAGES = 0,  // reset tree: flops per cascade in front of its rst_i (0..8)
     localparam int M = N_CASCADES,
     localparam int NL = M * N_NARROW,  // cascade lanes
     localparam int N = NL + N_WIDE,  // lanes in all
@@ -71,6 +76,9 @@ module ooc_cascade_wrapper #(
   if (N_WIDE < 0) begin : g_bad_w
     $error("ooc_cascade_wrapper: parameter N_WIDE must not be negative");
   end
+  if (RST_STAGES < 0 || RST_STAGES > 8) begin : g_bad_rst_stages
+    $error("ooc_cascade_wrapper: parameter RST_STAGES must be 0..8");
+  end
 
   logic ooc_rst_q;
   logic [N-1:0] ooc_in_valid_q, ooc_out_ready_q, ooc_in_ready_q, ooc_out_valid_q;
@@ -86,14 +94,55 @@ module ooc_cascade_wrapper #(
   wire [M-1:0] dut_esc_valid, dut_esc_hit;
   wire [M*EW-1:0] dut_esc_tag;  // per cascade {lane, tag}
 
-  always_ff @(posedge clk_i) begin
-    ooc_rst_q <= rst_i;
-    if (ooc_rst_q) begin
-      {ooc_in_valid_q, ooc_out_ready_q, ooc_in_ready_q, ooc_out_valid_q} <= '0;
-      {ooc_esc_ready_q, ooc_esc_valid_q} <= '0;
-    end else begin
-      {ooc_in_valid_q, ooc_out_ready_q, ooc_esc_ready_q} <= {in_valid_i, out_ready_i, esc_ready_i};
-      {ooc_in_ready_q, ooc_out_valid_q, ooc_esc_valid_q} <= {dut_in_ready, dut_out_valid, dut_esc_valid};
+  always_ff @(posedge clk_i) ooc_rst_q <= rst_i;
+
+  // The reset of a harness flop of lane l (or of escalation stream m) and
+  // of cascade m: ooc_rst_q itself, or kept copies (one per lane, stream
+  // and cascade; identical flops would otherwise be merged into one).
+  wire [N-1:0] lane_rst;
+  wire [M-1:0] esc_rst, cascade_rst;
+  if (RST_STAGES == 0) begin : g_rst_direct
+    assign lane_rst = {N{ooc_rst_q}};
+    assign esc_rst = {M{ooc_rst_q}};
+    assign cascade_rst = {M{ooc_rst_q}};
+  end else begin : g_rst_tree
+    logic [N-1:0] ooc_lane_rst_q;
+    logic [M-1:0] ooc_esc_rst_q;
+    for (genvar l = 0; l < N; l++) begin : g_lane_rst
+      (* keep *)
+      always_ff @(posedge clk_i) ooc_lane_rst_q[l] <= ooc_rst_q;
+    end
+    for (genvar m = 0; m < M; m++) begin : g_esc_rst
+      (* keep *)
+      always_ff @(posedge clk_i) ooc_esc_rst_q[m] <= ooc_rst_q;
+    end
+    assign lane_rst = ooc_lane_rst_q;
+    assign esc_rst  = ooc_esc_rst_q;
+    for (genvar m = 0; m < M; m++) begin : g_cascade_rst
+      logic [RST_STAGES-1:0] ooc_rst_chain_q;
+      (* keep *)
+      always_ff @(posedge clk_i) begin
+        ooc_rst_chain_q[0] <= ooc_rst_q;
+        for (int s = 1; s < RST_STAGES; s++) ooc_rst_chain_q[s] <= ooc_rst_chain_q[s-1];
+      end
+      assign cascade_rst[m] = ooc_rst_chain_q[RST_STAGES-1];
+    end
+  end
+
+  for (genvar l = 0; l < N; l++) begin : g_lane_ctrl
+    always_ff @(posedge clk_i) begin
+      if (lane_rst[l]) begin
+        {ooc_in_valid_q[l], ooc_out_ready_q[l], ooc_in_ready_q[l], ooc_out_valid_q[l]} <= '0;
+      end else begin
+        {ooc_in_valid_q[l], ooc_out_ready_q[l]} <= {in_valid_i[l], out_ready_i[l]};
+        {ooc_in_ready_q[l], ooc_out_valid_q[l]} <= {dut_in_ready[l], dut_out_valid[l]};
+      end
+    end
+  end
+  for (genvar m = 0; m < M; m++) begin : g_esc_ctrl
+    always_ff @(posedge clk_i) begin
+      if (esc_rst[m]) {ooc_esc_ready_q[m], ooc_esc_valid_q[m]} <= '0;
+      else {ooc_esc_ready_q[m], ooc_esc_valid_q[m]} <= {esc_ready_i[m], dut_esc_valid[m]};
     end
   end
 
@@ -130,7 +179,7 @@ module ooc_cascade_wrapper #(
         .PIPELINE(PIPELINE)
     ) u_dut (
         .clk_i(clk_i),
-        .rst_i(ooc_rst_q),
+        .rst_i(cascade_rst[m]),
         .in_valid_i(ooc_in_valid_q[m*K+:K]),
         .in_ready_o(dut_in_ready[m*K+:K]),
         .in_tag_i(tag[m*K*TAG_BITS+:K*TAG_BITS]),
@@ -172,7 +221,8 @@ module ooc_cascade_wrapper #(
         .DIR_BITS(WIDE_DIR_BITS),
         .TAG_BITS(TAG_BITS),
         .CONSERVATIVE(1),
-        .PIPELINE(PIPELINE)
+        .PIPELINE(PIPELINE),
+        .RST_STAGES(RST_STAGES)
     ) u_wide (
         .clk_i(clk_i),
         .rst_i(ooc_rst_q),

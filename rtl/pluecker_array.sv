@@ -24,6 +24,19 @@
 // out_valid_o come from flops, results in input order, nothing accepted
 // before a reset (rst_i, synchronous, shared) leaves after it. Parameters
 // are checked at elaboration here (the counts) and in each unit (the rest).
+//
+// Reset tree. With RST_STAGES = 0 rst_i drives every unit's control flops
+// directly: on a whole chip one net from one flop to all of them (on an
+// LFE5U-85F 13 units across the die, 5.9 ns of routing; fpga/TIMING.md).
+// RST_STAGES = K > 0 gives every unit a chain of K flops of its own in
+// front of its rst_i (kept: synthesis must not merge the copies), so each
+// net is short enough for one clock. The array then acts on rst_i K clocks
+// late: a reset takes effect K clocks after rst_i rises and ends K clocks
+// after it falls. Hold rst_i high for at least K + 1 clocks; in the first
+// K of them the lanes still run: an offered query must stay on offer (the
+// stream rule; what a lane takes then is dropped by the reset), and
+// out_ready_i must be low (a result delivered then would belong to before
+// the reset). in_ready_o stays low for the K clocks after rst_i falls.
 `default_nettype none
 
 module pluecker_array #(
@@ -34,6 +47,7 @@ module pluecker_array #(
     parameter int TAG_BITS = 16,
     parameter bit CONSERVATIVE = 1,
     parameter int PIPELINE = 0,
+    parameter int RST_STAGES = 0,  // reset flops per unit in front of its rst_i (0..8)
     // Lanes in all (not to be overridden).
     localparam int N = N_DSP + N_LUT
 ) (
@@ -65,12 +79,37 @@ module pluecker_array #(
     $error("pluecker_array: N_DSP + N_LUT must be 1..256");
   end
 
+  if (RST_STAGES < 0 || RST_STAGES > 8) begin : g_bad_rst_stages
+    $error("pluecker_array: parameter RST_STAGES must be 0..8");
+  end
+
   localparam int C3 = 3 * COORD_BITS;
   localparam int D3 = 3 * DIR_BITS;
 
   for (genvar l = 0; l < N; l++) begin : g_unit
     localparam logic [31:0] STYLE = (l < N_DSP) ? 32'("dsp") : 32'("lut");
     wire unused_strict;
+    wire unit_rst;
+    if (RST_STAGES == 0) begin : g_rst_direct
+      assign unit_rst = rst_i;
+    end else begin : g_rst_tree
+      // Kept: one chain per unit (identical flops would be merged into one,
+      // the single chip-wide net this chain is there to avoid). No reset of
+      // their own: they carry the reset.
+      logic [RST_STAGES-1:0] rst_q;
+`ifndef SYNTHESIS
+      // Simulation: the chain starts in reset, so that each unit sees rst_i
+      // high from its first clock as without the tree (its assertions
+      // check from the first clock with rst_i low).
+      initial rst_q = '1;
+`endif
+      (* keep *)
+      always_ff @(posedge clk_i) begin
+        rst_q[0] <= rst_i;
+        for (int s = 1; s < RST_STAGES; s++) rst_q[s] <= rst_q[s-1];
+      end
+      assign unit_rst = rst_q[RST_STAGES-1];
+    end
     pluecker_intersector #(
         .COORD_BITS(COORD_BITS),
         .DIR_BITS(DIR_BITS),
@@ -80,7 +119,7 @@ module pluecker_array #(
         .PIPELINE(PIPELINE)
     ) u_unit (
         .clk_i(clk_i),
-        .rst_i(rst_i),
+        .rst_i(unit_rst),
         .in_valid_i(in_valid_i[l]),
         .in_ready_o(in_ready_o[l]),
         .in_tag_i(in_tag_i[l*TAG_BITS+:TAG_BITS]),

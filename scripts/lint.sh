@@ -39,8 +39,9 @@
 #      and synth_ecp5 -noflatten runs to LUT mapping at 16/16 with the
 #      contract's MULT18X18D count.
 #   8. The array (pluecker_array): -Wall with mixed DSP and fabric lanes at
-#      four configurations; empty or negative lane counts and fabric lanes
-#      wider than 17 bits are refused.
+#      four configurations (reset trees of 0, 1 and 3 stages); empty or
+#      negative lane counts, fabric lanes wider than 17 bits and more than
+#      8 reset stages are refused.
 #   9. The ternary unit (TERNARY = 1) and the cascade (pluecker_cascade):
 #      -Wall at several narrow/wide widths, with and without ASSERT_ON;
 #      TERNARY without CONSERVATIVE, no lanes and a wide format narrower
@@ -527,11 +528,13 @@ if [ -x "$YOSYS" ]; then
 fi
 
 # --- 8. The array (pluecker_array: DSP and fabric lanes) ----------------------
-for cfg in "1 1 $LO $LO" "2 1 16 16" "1 0 $HI $HI" "0 3 8 8"; do
-    read -r nd nl c d <<< "$cfg"
-    LINT_TOP=pluecker_array lint_clean "verilator -Wall array N_DSP=$nd N_LUT=$nl C=$c D=$d" \
-        -GN_DSP="$nd" -GN_LUT="$nl" -GCOORD_BITS="$c" -GDIR_BITS="$d"
+for cfg in "1 1 $LO $LO 0" "2 1 16 16 1" "1 0 $HI $HI 0" "0 3 8 8 3"; do
+    read -r nd nl c d rs <<< "$cfg"
+    LINT_TOP=pluecker_array lint_clean "verilator -Wall array N_DSP=$nd N_LUT=$nl C=$c D=$d RST_STAGES=$rs" \
+        -GN_DSP="$nd" -GN_LUT="$nl" -GCOORD_BITS="$c" -GDIR_BITS="$d" -GRST_STAGES="$rs"
 done
+refused "verilator rejects array RST_STAGES=9" "RST_STAGES must be 0..8" -GRST_STAGES=9 \
+    --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array N_DSP=0 N_LUT=0" "N_DSP + N_LUT must be" -GN_DSP=0 -GN_LUT=0 -Wno-ASCRANGE \
     --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array N_DSP=-1" "must not be negative" -GN_DSP=-1 -GN_LUT=2 \

@@ -50,7 +50,11 @@ chip`), --cascade [M*]N:CxD:WCxWD[+W] M pluecker_cascades (default 1): N
 narrow TERNARY lanes each and the wide unit they escalate to, and W plain
 wide units (MULT18X18D) beside them (fpga/ooc_cascade_wrapper.sv); results
 in out/synth/array_*/ and
-out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>[_w<W>]/.
+out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>[_w<W>]/. Whole chips take
+two more options (`make chip` sets both): --rst-stages K, a reset tree of K
+flops per unit (per cascade) so that no reset net spans the die (folder
+suffix _r<K>), and --floorplan dsp, each unit's MULT18X18D on consecutive
+sites of the DSP rows (scripts/floorplan.py; suffix _fp).
 """
 from __future__ import annotations
 
@@ -70,6 +74,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
 import contract  # noqa: E402  (scripts/contract.py: the port contract's table)
+import floorplan  # noqa: E402  (scripts/floorplan.py: units' MULT18X18D side by side)
 import jobs  # noqa: E402  (scripts/jobs.py: here or on a Dask cluster)
 
 WRAPPER = ROOT / "fpga" / "ooc_wrapper.sv"
@@ -490,28 +495,53 @@ def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
     return fig
 
 
+def _unit_summary(path: Path) -> dict | None:
+    try:
+        return json.loads((path / "summary.json").read_text())
+    except (OSError, ValueError):
+        return None
+
+
 def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
-    """A placed chip of cascades: its own box tests per second (its lanes x
-    its median Fmax) beside the one-cascade extrapolation (the summary of
-    the same cascade placed alone, out/cascade_<N>_..., when there is one)."""
+    """A placed chip of cascades: its own box tests per second (its lanes
+    and plain units x its median Fmax) beside the one-cascade extrapolation
+    (the summary of the same cascade placed alone, out/cascade_<N>_..., when
+    there is one; chips without plain units) and beside the same cascades
+    and plain units each at its own Fmax placed alone (the plain units'
+    from out/<WC>x<WD>[_dsp][_p<P>]/): what placing them together costs."""
     p, f = design.params, design.fields
     lanes = p["N_CASCADES"] * p["N_NARROW"]
     plain = p.get("N_WIDE", 0)
     placed = {sp: round(st["median"] * 1e6 * (lanes + plain)) for sp, st in by_speed.items()}
     fig = {"cascades": p["N_CASCADES"], "lanes": lanes, "wide_units": plain, "box_tests_per_s": placed}
-    if plain:  # the one-cascade extrapolation is of another chip
-        return fig
+    pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
     one = out / (f"cascade_{p['N_NARROW']}_{f['coord_bits']}x{f['dir_bits']}_{f['wide_coord_bits']}x"
-                 f"{f['wide_dir_bits']}" + (f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""))
-    try:
-        unit = json.loads((one / "summary.json").read_text())
-    except (OSError, ValueError):
+                 f"{f['wide_dir_bits']}" + pipe)
+    unit = _unit_summary(one)
+    if unit is None:
         return fig
-    ext = unit.get("box_tests_per_s_per_chip", {})
-    fig["extrapolation"] = {"from": str(one), "units_per_chip": unit.get("units_per_chip"),
-                            "box_tests_per_s_per_chip": ext,
-                            "fmax_mhz": {sp: st["median"] for sp, st in unit.get("fmax_mhz", {}).items()}}
-    fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
+    fmax = {sp: st["median"] for sp, st in unit.get("fmax_mhz", {}).items()}
+    if not plain:  # with plain units the one-cascade extrapolation is of another chip
+        ext = unit.get("box_tests_per_s_per_chip", {})
+        fig["extrapolation"] = {"from": str(one), "units_per_chip": unit.get("units_per_chip"),
+                                "box_tests_per_s_per_chip": ext, "fmax_mhz": fmax}
+        fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
+    wide_fmax: dict = {}
+    if plain:
+        wc, wd = f["wide_coord_bits"], f["wide_dir_bits"]
+        auto = "lut" if max(wc, wd) <= MUL_LUT_MAX_BITS else "dsp"
+        wide_dir = out / f"{wc}x{wd}{'' if auto == 'dsp' else '_dsp'}{pipe}"
+        wide = _unit_summary(wide_dir)
+        if wide is None:
+            return fig
+        wide_fmax = {sp: st["median"] for sp, st in wide.get("fmax_mhz", {}).items()}
+        fig["plain_unit_alone"] = {"from": str(wide_dir), "fmax_mhz": wide_fmax}
+    fig["cascade_alone"] = {"from": str(one), "fmax_mhz": fmax}
+    same = {sp: round((lanes * fmax[sp] + plain * wide_fmax.get(sp, 0.0)) * 1e6)
+            for sp in placed if sp in fmax and (not plain or sp in wide_fmax)}
+    if same:
+        fig["same_units_alone"] = same
+        fig["of_same_units_alone"] = {sp: round(placed[sp] / v, 3) for sp, v in same.items()}
     return fig
 
 
@@ -542,6 +572,8 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "placer": args.placer,
         "synth_flags": args.synth_flags,
         "nextpnr_args": args.nextpnr_args,
+        "floorplan": args.floorplan if "floorplan" in ys else "none",
+        **({"dsp_sites": ys["floorplan"]} if "floorplan" in ys else {}),  # per unit: first, last site
         "tools": tools,
         "yosys_seconds": ys["seconds"],
         "utilisation": u,
@@ -588,6 +620,17 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
                     " of the same units at their one-unit Fmax")
             elif not a.get("extrapolation"):
                 line += " (no one-unit summary in this --out folder to compare with)"
+        elif sm.get("cascade_chip"):  # a chip of cascades (and plain units): its own rate
+            a = sm["cascade_chip"]
+            rate = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in a["box_tests_per_s"].items())
+            line += (f"  {a['cascades']} cascades, {a['lanes']} lanes, {a['wide_units']} plain units placed; "
+                     f"box tests/s {rate}")
+            if a.get("of_extrapolation"):
+                line += " = " + ", ".join(f"{r:.0%}" for r in a["of_extrapolation"].values()) + (
+                    " of the one-cascade extrapolation")
+            if a.get("of_same_units_alone"):
+                line += "; " + ", ".join(f"{r:.0%}" for r in a["of_same_units_alone"].values()) + (
+                    " of the same cascades and units placed alone")
         elif sm.get("units_per_chip"):
             chip = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in sm["box_tests_per_s_per_chip"].items())
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
@@ -698,10 +741,11 @@ def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
            "multiplier": f"{nd} units with MULT18X18D, {nl} in fabric"}
     name = f"array_{nd}x{nl}_{c}x{d}" + (f"_p{args.pipeline}" if args.pipeline else "")
     params = {"N_DSP": nd, "N_LUT": nl, "COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
-              "CONSERVATIVE": args.conservative, "PIPELINE": args.pipeline}
+              "CONSERVATIVE": args.conservative, "PIPELINE": args.pipeline, "RST_STAGES": args.rst_stages}
     return Design(name, "ooc_array_wrapper", ARRAY_WRAPPER, "pluecker_array", params, row,
                   {"config": f"array {nd}x{nl} {c}x{d}", "unit": "array", "name": name, "coord_bits": c,
-                   "dir_bits": d, "pipeline": args.pipeline, "n_dsp": nd, "n_lut": nl}, tests_per_clock=nd + nl)
+                   "dir_bits": d, "pipeline": args.pipeline, "rst_stages": args.rst_stages, "n_dsp": nd,
+                   "n_lut": nl}, tests_per_clock=nd + nl)
 
 
 CASCADE_WRAPPER = ROOT / "fpga" / "ooc_cascade_wrapper.sv"
@@ -748,14 +792,16 @@ def cascade_design(count: int, n: int, nc: int, nd: int, wc: int, wd: int, plain
     name = (f"cascade_{many}{n}_{nc}x{nd}_{wc}x{wd}" + (f"_w{plain}" if plain else "")
             + (f"_p{args.pipeline}" if args.pipeline else ""))
     params = {"N_CASCADES": count, "N_NARROW": n, "NARROW_COORD_BITS": nc, "NARROW_DIR_BITS": nd,
-              "WIDE_COORD_BITS": wc, "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline}
+              "WIDE_COORD_BITS": wc, "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline,
+              "RST_STAGES": args.rst_stages}
     if plain:
         params["N_WIDE"] = plain
     return Design(name, "ooc_cascade_wrapper", CASCADE_WRAPPER, "pluecker_cascade", params, row,
                   {"config": f"cascade {many}{n}x{nc}x{nd}>{wc}x{wd}" + (f"+{plain}x{wc}x{wd}" if plain else ""),
                    "unit": "cascade", "name": name,
                    "coord_bits": nc, "dir_bits": nd, "wide_coord_bits": wc, "wide_dir_bits": wd,
-                   "pipeline": args.pipeline, "n_cascades": count, "n_narrow": n, "n_wide_units": plain},
+                   "pipeline": args.pipeline, "rst_stages": args.rst_stages, "n_cascades": count, "n_narrow": n,
+                   "n_wide_units": plain},
                   tests_per_clock=count * n + plain)
 
 
@@ -775,6 +821,12 @@ def design_of(spec: tuple, args) -> Design:
         d = global_design(*size, args)
     # another netlist, another folder: -nolutram -> <name>_nolutram
     d.name += "".join("_" + flag.lstrip("-") for flag in args.synth_flags)
+    if kind in ("array", "cascade") and args.rst_stages:
+        d.name += f"_r{args.rst_stages}"
+    if args.floorplan == "dsp" and d.row.get("mult18x18d"):  # nothing to pin without MULT18X18D
+        d.name += "_fp"
+    if "name" in d.fields:  # the summary's name is the folder's (make chip-effective tells chips by it)
+        d.fields["name"] = d.name
     return d
 
 
@@ -787,6 +839,11 @@ def synth_one(spec: tuple, args, yosys: str, sources: list[Path]) -> dict:
     if cells.get("MULT18X18D", 0) != design.row["mult18x18d"]:
         raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
                         f"says {design.row['mult18x18d']}")
+    if args.floorplan == "dsp" and cells.get("MULT18X18D", 0):
+        try:
+            ys["floorplan"] = floorplan.pin_units(Path(args.out) / design.name / "netlist.json", design.top)
+        except floorplan.FloorplanError as e:
+            raise FlowError(f"--floorplan dsp: {e}") from None
     return {"ys": ys, "row": design.row}
 
 
@@ -876,6 +933,14 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--placer", choices=("heap", "static", "sa"), default="heap",
                    help="nextpnr placer (heap: analytical, the default; static: electrostatic, "
                         "placed a 13x20 chip heap stalled on, at a lower Fmax; sa: annealing only)")
+    p.add_argument("--rst-stages", type=int, choices=range(0, 9), default=0, metavar="K",
+                   help="--array, --cascade: RST_STAGES, a reset tree of K flops per unit (per cascade) in "
+                        "front of its rst_i, so that no reset net spans a whole chip; adds _r<K> to the "
+                        "output folder's name")
+    p.add_argument("--floorplan", choices=("none", "dsp"), default="none",
+                   help="dsp: each unit's MULT18X18D on consecutive sites of the DSP rows (BEL attributes, "
+                        "scripts/floorplan.py), so its fabric can sit next to all of them; adds _fp to the "
+                        "output folder's name")
     p.add_argument("--synth-flag", dest="synth_flags", action="append", default=[], metavar="FLAG",
                    help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (FIFOs in "
                         "flip-flops) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")

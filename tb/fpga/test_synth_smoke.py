@@ -86,16 +86,18 @@ def test_array_smoke(tmp_path):
     and the fabric unit's LUTs, and the array's own box tests per second.
     Placed by nextpnr's static placer (--placer static; the unit smoke run
     above uses heap), with one option passed through to nextpnr
-    (--nextpnr-arg, here its per-net timing in report.json)."""
+    (--nextpnr-arg, here its per-net timing in report.json), and the DSP
+    unit's blocks pinned by the floorplan (--floorplan dsp: nextpnr takes
+    the twelve BEL names and places the blocks there)."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--array", "1x1", "--coord-bits", "8",
                           "--dir-bits", "8", "--smoke", "--placer", "static",
-                          "--nextpnr-arg=--detailed-timing-report", "--out", str(tmp_path)],
+                          "--nextpnr-arg=--detailed-timing-report", "--floorplan", "dsp", "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --array failed:\n{res.stdout}\n{res.stderr}"
-    s = json.loads((tmp_path / "array_1x1_8x8" / "summary.json").read_text())
+    s = json.loads((tmp_path / "array_1x1_8x8_fp" / "summary.json").read_text())
     u = s["utilisation"]
     # The DSP unit's twelve products on MULT18X18D (the port contract's count
     # for one DSP unit), the fabric unit's on LUTs and carry chains.
@@ -106,9 +108,13 @@ def test_array_smoke(tmp_path):
     (run,) = s["runs"]
     assert "error" not in run and run["fmax"] > 0, run
     assert s["placer"] == "static" and s["nextpnr_args"] == ["--detailed-timing-report"]
-    rundir = tmp_path / "array_1x1_8x8" / "pnr" / "speed8_seed1"
+    rundir = tmp_path / "array_1x1_8x8_fp" / "pnr" / "speed8_seed1"
     log = (rundir / "nextpnr.log").read_text()
     assert "Running Static placer" in log and "HeAP" not in log
+    # The floorplan: one unit on the first twelve sites of the snake order.
+    import floorplan  # scripts/floorplan.py
+    assert s["floorplan"] == "dsp" and "Placed 12 cells based on constraints" in log
+    assert s["dsp_sites"] == {"u_dut.g_unit[0].u_unit": [floorplan.dsp_sites()[0], floorplan.dsp_sites()[11]]}
     assert "detailed_net_timings" in json.loads((rundir / "report.json").read_text())
     assert s["array"]["units"] == 2
     assert s["array"]["box_tests_per_s"]["8"] == round(s["fmax_mhz"]["8"]["median"] * 1e6 * 2)
@@ -142,14 +148,31 @@ def test_cascade_yosys(tmp_path):
     cascades): each cascade two narrow TERNARY lanes with fabric multipliers
     and a shared wide 16/16 unit on MULT18X18D blocks, the port contract's
     counts (12 blocks a cascade: the wide unit's alone; 12 the plain
-    unit)."""
+    unit). With a two-stage reset tree (--rst-stages 2) and the DSP
+    floorplan (--floorplan dsp): every copy of the reset is a flip-flop of
+    its own in the netlist (Yosys merges identical flops unless kept), and
+    each wide unit's twelve blocks carry consecutive sites."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2*2:8x8:16x16+1",
-                          "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=1800)
+                          "--rst-stages", "2", "--floorplan", "dsp", "--no-pnr", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --cascade failed:\n{res.stdout}\n{res.stderr}"
-    s = json.loads((tmp_path / "cascade_2x2_8x8_16x16_w1" / "summary.json").read_text())
+    folder = tmp_path / "cascade_2x2_8x8_16x16_w1_r2_fp"
+    s = json.loads((folder / "summary.json").read_text())
+    assert s["rst_stages"] == 2 and s["floorplan"] == "dsp" and s["name"] == folder.name
+    cells = json.loads((folder / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]["cells"]
+    # The reset tree: the harness's reset flop, two stages per cascade (2)
+    # and per plain unit (1), one copy per harness lane (5) and escalation
+    # stream (2): 14 flops named after a reset net.
+    rst_ffs = sorted(n for n, c in cells.items() if c["type"] == "TRELLIS_FF" and "rst" in n)
+    assert len(rst_ffs) == 1 + 2 * 2 + 2 + 5 + 2, rst_ffs
+    import floorplan  # scripts/floorplan.py
+    bels = sorted((floorplan.dsp_sites().index(c["attributes"]["BEL"]), n) for n, c in cells.items()
+                  if c["type"] == "MULT18X18D")
+    assert [i for i, _ in bels] == list(range(36)), bels
+    assert len({n[:n.rfind(".g_mul[")] for _, n in bels[12:24]}) == 1  # one unit per run of twelve sites
     import contract  # scripts/contract.py
     wide = contract.row(16, 16, "auto", 0)["mult18x18d"]
     assert contract.row(8, 8, "auto", 0)["mult18x18d"] == 0 and wide == 12
@@ -190,3 +213,36 @@ def test_array_figures_same_units_alone(tmp_path):
                         dict(params, N_DSP=13, N_LUT=0), {})
     fig = synth.array_figures(pure, {"8": {"median": 100.0}}, tmp_path)
     assert fig["of_extrapolation"] == {"8": 0.5} and fig["of_same_units_alone"] == {"8": 0.5}
+
+
+def test_cascade_chip_figures_same_units_alone(tmp_path):
+    """A placed chip of 2 cascades (2 lanes each) and 3 plain 16/16 units
+    against the same cascades and units placed alone (cascade_chip_figures,
+    no tools): one cascade alone at 200 MHz, one 16/16 unit alone at 250
+    MHz give 4 x 200 + 3 x 250 = 1,550 M box tests per second; the chip at
+    155 MHz gives 7 x 155 = 1,085 M, 70 %. Without the plain unit's summary
+    no such figure; a chip without plain units is also compared with the
+    one-cascade extrapolation."""
+    def summary(name, fmax, per_chip=None):
+        d = tmp_path / name
+        d.mkdir()
+        fig = {"fmax_mhz": {"8": {"median": fmax}}}
+        if per_chip:
+            fig.update(units_per_chip=per_chip, box_tests_per_s_per_chip={"8": round(per_chip * 2 * fmax * 1e6)})
+        d.joinpath("summary.json").write_text(json.dumps(fig))
+    summary("cascade_2_8x8_16x16_p1", 200.0, per_chip=10)
+    params = {"N_CASCADES": 2, "N_NARROW": 2, "N_WIDE": 3, "PIPELINE": 1}
+    fields = {"coord_bits": 8, "dir_bits": 8, "wide_coord_bits": 16, "wide_dir_bits": 16}
+    design = synth.Design("cascade_2x2_8x8_16x16_w3_p1", "ooc_cascade_wrapper", Path("w.sv"),
+                          "pluecker_cascade", params, {}, fields)
+    fig = synth.cascade_chip_figures(design, {"8": {"median": 155.0}}, tmp_path)
+    assert fig["box_tests_per_s"] == {"8": 1_085_000_000}
+    assert "same_units_alone" not in fig and "of_extrapolation" not in fig  # no 16x16_p1 summary yet
+    summary("16x16_p1", 250.0)  # the plain wide unit alone (16/16: "auto" is dsp)
+    fig = synth.cascade_chip_figures(design, {"8": {"median": 155.0}}, tmp_path)
+    assert fig["same_units_alone"] == {"8": 1_550_000_000} and fig["of_same_units_alone"] == {"8": 0.7}
+    assert "of_extrapolation" not in fig  # the one-cascade chip is another chip
+    pure = synth.Design("cascade_5x2_8x8_16x16_p1", "ooc_cascade_wrapper", Path("w.sv"), "pluecker_cascade",
+                        dict(params, N_CASCADES=5, N_WIDE=0), {}, fields)
+    fig = synth.cascade_chip_figures(pure, {"8": {"median": 100.0}}, tmp_path)
+    assert fig["of_extrapolation"] == {"8": 0.25} and fig["of_same_units_alone"] == {"8": 0.5}

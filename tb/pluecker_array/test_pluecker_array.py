@@ -15,7 +15,10 @@ Tests
            in order per lane, right
   reset    resets in the middle of the streams: everything in flight in any
            lane vanishes (a result after the reset with no query of its lane
-           outstanding is an error); afterwards every lane works again
+           outstanding is an error); afterwards every lane works again. With
+           a reset tree (RST_STAGES = K) the array acts K clocks late: the
+           bench holds rst_i K clocks longer and checks that every lane's
+           in_ready_o stays low for K clocks after rst_i falls
   rate     no idle, no stall: every lane takes one query per clock, so the
            array answers N queries per clock
 """
@@ -53,6 +56,7 @@ class ArrayBench:
         self.tag_bits = int(dut.TAG_BITS.value)
         self.coord_bits, self.dir_bits = int(dut.COORD_BITS.value), int(dut.DIR_BITS.value)
         self.conservative = bool(int(dut.CONSERVATIVE.value))
+        self.rst_stages = int(dut.RST_STAGES.value)  # the reset tree's delay in clocks
         self.fmt = pv.fixed_format(self.coord_bits, self.dir_bits, self.conservative)
         # Port widths of one lane (the intersector's).
         self.width = {name: len(getattr(dut, name)) // self.n for name in ("in_tag_i", *PAYLOAD)}
@@ -133,25 +137,40 @@ class ArrayBench:
         """A synchronous reset (entered at a falling edge): whatever is in
         flight is gone; the held queries are offered again afterwards.
         in_ready_o and out_valid_o are low from the second reset cycle on
-        and out_valid_o in the first cycle after it."""
-        dut = self.dut
-        dut.in_valid_i.value = 0
+        and out_valid_o in the first cycle after it. With a reset tree of K
+        stages all of it happens K clocks later: rst_i is held K clocks
+        longer, the queries on offer stay on offer for the first K of them
+        (the lanes still run; what they take then is dropped by the reset),
+        out_ready_i is low, and in_ready_o is low in the K clocks after
+        rst_i falls too (the lanes are still in reset)."""
+        dut, k_tree = self.dut, self.rst_stages
+        if not k_tree:
+            dut.in_valid_i.value = 0
         dut.out_ready_i.value = 0
         dut.rst_i.value = 1
         for b in self.boards:
             b.drop_all()
-        for k in range(cycles):
+        for k in range(cycles + k_tree):
             await RisingEdge(dut.clk_i)
             self.edge += 1
             await ReadOnly()
-            if k >= 1 or cycles == 1:
+            if k >= 1 + k_tree or (cycles == 1 and k == k_tree):
                 assert int(dut.in_ready_o.value) == 0 and int(dut.out_valid_o.value) == 0, "ready/valid in reset"
             await FallingEdge(dut.clk_i)
+            if k == k_tree - 1:
+                # The lanes are in reset from now on: only now may an offer
+                # be withdrawn (what they took meanwhile is dropped).
+                dut.in_valid_i.value = 0
         dut.rst_i.value = 0
-        await RisingEdge(dut.clk_i)
-        self.edge += 1
-        await ReadOnly()
-        assert int(dut.out_valid_o.value) == 0, "out_valid_o right after a reset"
+        for k in range(k_tree + 1):
+            await RisingEdge(dut.clk_i)
+            self.edge += 1
+            await ReadOnly()
+            assert int(dut.out_valid_o.value) == 0, f"out_valid_o {k} clocks after a reset"
+            if k < k_tree:
+                assert int(dut.in_ready_o.value) == 0, f"in_ready_o {k} clocks after rst_i fell, {k_tree} reset stages"
+            if k < k_tree:
+                await FallingEdge(dut.clk_i)
 
     def finish(self, what: str) -> None:
         for l, b in enumerate(self.boards):
@@ -167,13 +186,13 @@ async def _start(dut, seed: int, idle: bool, backpressure: bool) -> ArrayBench:
     dut.in_valid_i.value = 0
     dut.out_ready_i.value = 0
     dut.rst_i.value = 1
-    for _ in range(3):
+    for _ in range(3 + bench.rst_stages):
         await RisingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)
     dut.rst_i.value = 0
-    dut._log.info("array: N_DSP=%d N_LUT=%d COORD_BITS=%d DIR_BITS=%d CONSERVATIVE=%d, seed %d",
+    dut._log.info("array: N_DSP=%d N_LUT=%d COORD_BITS=%d DIR_BITS=%d CONSERVATIVE=%d RST_STAGES=%d, seed %d",
                   int(dut.N_DSP.value), int(dut.N_LUT.value), bench.coord_bits, bench.dir_bits, bench.conservative,
-                  seed)
+                  bench.rst_stages, seed)
     return bench
 
 
@@ -233,34 +252,36 @@ if cocotb is not None:
 # pytest side: one Verilator build per array
 # ---------------------------------------------------------------------------
 
-# (N_DSP, N_LUT, COORD_BITS, DIR_BITS, CONSERVATIVE, PIPELINE, ecp5): a mixed
-# pair at 16/16 (the DSP lane on the MULT18X18D model), three fabric lanes
-# at 8/8, and a mixed four with the multipliers' extra register.
+# (N_DSP, N_LUT, COORD_BITS, DIR_BITS, CONSERVATIVE, PIPELINE, RST_STAGES,
+# ecp5): a mixed pair at 16/16 (the DSP lane on the MULT18X18D model), three
+# fabric lanes at 8/8, and a mixed four with the multipliers' extra
+# register and a two-stage reset tree.
 CONFIGS = [
-    (1, 1, 16, 16, 1, 0, True),
-    (0, 3, 8, 8, 0, 0, False),
-    (2, 2, 10, 12, 1, 1, False),
+    (1, 1, 16, 16, 1, 0, 0, True),
+    (0, 3, 8, 8, 0, 0, 0, False),
+    (2, 2, 10, 12, 1, 1, 2, False),
 ]
 
 
-def _name(nd, nl, c, d, cons, pipe, ecp5) -> str:
-    return f"d{nd}_l{nl}_c{c}_d{d}_{'cons' if cons else 'near'}{f'_p{pipe}' if pipe else ''}{'_ecp5' if ecp5 else ''}"
+def _name(nd, nl, c, d, cons, pipe, rst, ecp5) -> str:
+    return (f"d{nd}_l{nl}_c{c}_d{d}_{'cons' if cons else 'near'}{f'_p{pipe}' if pipe else ''}"
+            f"{f'_r{rst}' if rst else ''}{'_ecp5' if ecp5 else ''}")
 
 
-@pytest.mark.parametrize("n_dsp,n_lut,coord_bits,dir_bits,conservative,pipeline,ecp5", CONFIGS,
+@pytest.mark.parametrize("n_dsp,n_lut,coord_bits,dir_bits,conservative,pipeline,rst_stages,ecp5", CONFIGS,
                          ids=[_name(*c) for c in CONFIGS])
-def test_pluecker_array(n_dsp, n_lut, coord_bits, dir_bits, conservative, pipeline, ecp5) -> None:
+def test_pluecker_array(n_dsp, n_lut, coord_bits, dir_bits, conservative, pipeline, rst_stages, ecp5) -> None:
     from pluecker_tb import ecp5 as ecp5_models
     from pluecker_tb.runner import VERILATOR_RTL_ARGS, Build, need_model, rtl_sources
 
     need_model()
     parameters = {"N_DSP": n_dsp, "N_LUT": n_lut, "COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 8,
-                  "CONSERVATIVE": conservative, "PIPELINE": pipeline}
+                  "CONSERVATIVE": conservative, "PIPELINE": pipeline, "RST_STAGES": rst_stages}
     sources, defines = rtl_sources(), {"ASSERT_ON": 1}
     if ecp5:
         sources += ecp5_models.model_sources()
         defines["PLUECKER_ECP5"] = 1
-    build = Build("array_" + _name(n_dsp, n_lut, coord_bits, dir_bits, conservative, pipeline, ecp5))
+    build = Build("array_" + _name(n_dsp, n_lut, coord_bits, dir_bits, conservative, pipeline, rst_stages, ecp5))
     build.build(sources=sources, hdl_toplevel=TOPLEVEL, parameters=parameters, defines=defines,
                 build_args=VERILATOR_RTL_ARGS)
     build.test("test_pluecker_array")

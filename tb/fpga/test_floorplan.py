@@ -1,0 +1,85 @@
+# SPDX-License-Identifier: MIT
+"""scripts/floorplan.py: the LFE5U-85F's MULT18X18D sites and how a chip's
+units are put on them (--floorplan dsp). Pure Python, no tools; the smoke
+run in test_synth_smoke.py checks that nextpnr takes the site names."""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(REPO / "scripts"))
+import floorplan  # noqa: E402  (scripts/floorplan.py)
+
+
+def _xy(site: str) -> tuple[int, int]:
+    m = re.fullmatch(r"X(\d+)/Y(\d+)/MULT18_[0145]", site)
+    assert m, site
+    return int(m.group(1)), int(m.group(2))
+
+
+def _unit_cells(prefix: str, products: int = 6) -> list[str]:
+    """The twelve MULT18X18D of one 16/16 unit as Yosys names them."""
+    return [f"{prefix}.g_mul[{j}].g_dsp.u_mul_{ab}.g_dsp[0].g_used.u_mult"
+            for j in range(products) for ab in "ab"]
+
+
+def test_sites_snake_order():
+    sites = floorplan.dsp_sites()
+    assert len(sites) == len(set(sites)) == 156
+    xy = [_xy(s) for s in sites]
+    assert sorted({y for _, y in xy}) == list(floorplan.DSP_ROWS_85F)
+    for (x0, y0), (x1, y1) in zip(xy, xy[1:]):
+        # neighbours: the next site in the same row (at most one slice gap),
+        # or straight below at a row change
+        assert (y0 == y1 and 0 < abs(x1 - x0) <= 6) or (x0 == x1 and y1 > y0), (x0, y0, x1, y1)
+
+
+def test_units_consecutive_and_kinds_spread():
+    # a chip of 4 cascades' wide units and 9 plain units: 156 blocks
+    names = [c for i in range(4) for c in _unit_cells(f"g_cascade[{i}].u_dut.u_wide")]
+    names += [c for k in range(9) for c in _unit_cells(f"g_wide.u_wide.g_unit[{k}].u_unit")]
+    sites = floorplan.assign(names)
+    assert sorted(sites) == sorted(names) and len(set(sites.values())) == 156
+    index = {s: i for i, s in enumerate(floorplan.dsp_sites())}
+    starts = {}
+    for unit in [f"g_cascade[{i}].u_dut.u_wide" for i in range(4)] + \
+                [f"g_wide.u_wide.g_unit[{k}].u_unit" for k in range(9)]:
+        idx = sorted(index[sites[c]] for c in _unit_cells(unit))
+        assert idx == list(range(idx[0], idx[0] + 12)), (unit, idx)  # one run of sites
+        assert idx[0] % 12 == 0
+        starts[unit] = idx[0] // 12
+    slots = sorted(starts[f"g_cascade[{i}].u_dut.u_wide"] for i in range(4))
+    assert min(b - a for a, b in zip(slots, slots[1:])) >= 3, slots  # cascades spread, not side by side
+
+
+def test_refused():
+    with pytest.raises(floorplan.FloorplanError, match="u_dut.u_other.u_mult"):
+        floorplan.assign(_unit_cells("u_dut.g_unit[0].u_unit") + ["u_dut.u_other.u_mult"])
+    too_many = [c for k in range(14) for c in _unit_cells(f"u_dut.g_unit[{k}].u_unit")]
+    with pytest.raises(floorplan.FloorplanError, match="168 MULT18X18D"):
+        floorplan.assign(too_many)
+
+
+def test_pin_units_writes_bel(tmp_path):
+    cells = {n: {"type": "MULT18X18D", "attributes": {"src": "x.sv:1"}}
+             for k in range(2) for n in _unit_cells(f"u_dut.g_unit[{k}].u_unit")}
+    cells["ff"] = {"type": "TRELLIS_FF", "attributes": {}}
+    path = tmp_path / "netlist.json"
+    path.write_text(json.dumps({"modules": {"top": {"cells": cells}}}))
+    spans = floorplan.pin_units(path, "top")
+    out = json.loads(path.read_text())["modules"]["top"]["cells"]
+    sites = floorplan.dsp_sites()
+    assert [out[n]["attributes"]["BEL"] for n in _unit_cells("u_dut.g_unit[0].u_unit")] == sites[:12]
+    assert [out[n]["attributes"]["BEL"] for n in _unit_cells("u_dut.g_unit[1].u_unit")] == sites[12:24]
+    assert out["u_dut.g_unit[0].u_unit.g_mul[0].g_dsp.u_mul_a.g_dsp[0].g_used.u_mult"]["attributes"]["src"] == "x.sv:1"
+    assert "BEL" not in out["ff"]["attributes"]
+    assert spans == {"u_dut.g_unit[0].u_unit": [sites[0], sites[11]],
+                     "u_dut.g_unit[1].u_unit": [sites[12], sites[23]]}
+    with pytest.raises(floorplan.FloorplanError, match="no module 'other'"):
+        floorplan.pin_units(path, "other")
