@@ -7,7 +7,7 @@
 // by a cycle, so the harness does not keep the valid/ready contract. Its
 // flip-flops are named ooc_*_q (counted apart from the array's). With
 // RST_STAGES > 0 (the array's reset tree) the harness's lane flops take
-// their reset from a kept copy per lane too, so no reset net spans the chip.
+// their reset from a kept chain per lane too, so no reset net spans the chip.
 `default_nettype none
 
 module ooc_array_wrapper #(
@@ -64,10 +64,15 @@ module ooc_array_wrapper #(
     if (RST_STAGES == 0) begin : g_rst_direct
       assign lane_rst = ooc_rst_q;
     end else begin : g_rst_copy
-      logic ooc_lane_rst_q;
-      (* keep *)  // one per lane, not merged
-      always_ff @(posedge clk_i) ooc_lane_rst_q <= ooc_rst_q;
-      assign lane_rst = ooc_lane_rst_q;
+      // A chain as deep as a unit's (one per lane, kept: not merged), so
+      // that the harness's reset reaches the far lanes in as many hops.
+      logic [RST_STAGES-1:0] ooc_lane_rst_q;
+      (* keep *)
+      always_ff @(posedge clk_i) begin
+        ooc_lane_rst_q[0] <= ooc_rst_q;
+        for (int s = 1; s < RST_STAGES; s++) ooc_lane_rst_q[s] <= ooc_lane_rst_q[s-1];
+      end
+      assign lane_rst = ooc_lane_rst_q[RST_STAGES-1];
     end
     always_ff @(posedge clk_i) begin
       if (lane_rst) begin

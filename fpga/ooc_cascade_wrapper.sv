@@ -19,7 +19,7 @@
 // a reset tree, so that no reset net spans the chip: each cascade takes
 // its rst_i from a kept chain of RST_STAGES flops of its own, the plain
 // units from theirs (pluecker_array's RST_STAGES), the harness's flops of
-// a lane or an escalation stream from a kept copy each.
+// a lane or an escalation stream from a kept chain as deep each.
 `default_nettype none
 
 module ooc_cascade_wrapper #(
@@ -97,8 +97,9 @@ module ooc_cascade_wrapper #(
   always_ff @(posedge clk_i) ooc_rst_q <= rst_i;
 
   // The reset of a harness flop of lane l (or of escalation stream m) and
-  // of cascade m: ooc_rst_q itself, or kept copies (one per lane, stream
-  // and cascade; identical flops would otherwise be merged into one).
+  // of cascade m: ooc_rst_q itself, or the end of a kept chain of
+  // RST_STAGES flops (one per lane, stream and cascade; identical flops
+  // would otherwise be merged into one).
   wire [N-1:0] lane_rst;
   wire [M-1:0] esc_rst, cascade_rst;
   if (RST_STAGES == 0) begin : g_rst_direct
@@ -106,18 +107,24 @@ module ooc_cascade_wrapper #(
     assign esc_rst = {M{ooc_rst_q}};
     assign cascade_rst = {M{ooc_rst_q}};
   end else begin : g_rst_tree
-    logic [N-1:0] ooc_lane_rst_q;
-    logic [M-1:0] ooc_esc_rst_q;
     for (genvar l = 0; l < N; l++) begin : g_lane_rst
+      logic [RST_STAGES-1:0] ooc_chain_q;
       (* keep *)
-      always_ff @(posedge clk_i) ooc_lane_rst_q[l] <= ooc_rst_q;
+      always_ff @(posedge clk_i) begin
+        ooc_chain_q[0] <= ooc_rst_q;
+        for (int s = 1; s < RST_STAGES; s++) ooc_chain_q[s] <= ooc_chain_q[s-1];
+      end
+      assign lane_rst[l] = ooc_chain_q[RST_STAGES-1];
     end
     for (genvar m = 0; m < M; m++) begin : g_esc_rst
+      logic [RST_STAGES-1:0] ooc_chain_q;
       (* keep *)
-      always_ff @(posedge clk_i) ooc_esc_rst_q[m] <= ooc_rst_q;
+      always_ff @(posedge clk_i) begin
+        ooc_chain_q[0] <= ooc_rst_q;
+        for (int s = 1; s < RST_STAGES; s++) ooc_chain_q[s] <= ooc_chain_q[s-1];
+      end
+      assign esc_rst[m] = ooc_chain_q[RST_STAGES-1];
     end
-    assign lane_rst = ooc_lane_rst_q;
-    assign esc_rst  = ooc_esc_rst_q;
     for (genvar m = 0; m < M; m++) begin : g_cascade_rst
       logic [RST_STAGES-1:0] ooc_rst_chain_q;
       (* keep *)

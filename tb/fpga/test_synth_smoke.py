@@ -88,13 +88,15 @@ def test_array_smoke(tmp_path):
     above uses heap), with one option passed through to nextpnr
     (--nextpnr-arg, here its per-net timing in report.json), and the DSP
     unit's blocks pinned by the floorplan (--floorplan dsp: nextpnr takes
-    the twelve BEL names and places the blocks there)."""
+    the twelve BEL names and places the blocks there, as the design it
+    writes, --nextpnr-arg=--write=placed.json, shows)."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--array", "1x1", "--coord-bits", "8",
                           "--dir-bits", "8", "--smoke", "--placer", "static",
-                          "--nextpnr-arg=--detailed-timing-report", "--floorplan", "dsp", "--out", str(tmp_path)],
+                          "--nextpnr-arg=--detailed-timing-report", "--nextpnr-arg=--write=placed.json",
+                          "--floorplan", "dsp", "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --array failed:\n{res.stdout}\n{res.stderr}"
     s = json.loads((tmp_path / "array_1x1_8x8_fp" / "summary.json").read_text())
@@ -107,14 +109,19 @@ def test_array_smoke(tmp_path):
     assert s["design"] == "pluecker_array" and (s["n_dsp"], s["n_lut"]) == (1, 1)
     (run,) = s["runs"]
     assert "error" not in run and run["fmax"] > 0, run
-    assert s["placer"] == "static" and s["nextpnr_args"] == ["--detailed-timing-report"]
+    assert s["placer"] == "static"
+    assert s["nextpnr_args"] == ["--detailed-timing-report", "--write=placed.json"]
     rundir = tmp_path / "array_1x1_8x8_fp" / "pnr" / "speed8_seed1"
     log = (rundir / "nextpnr.log").read_text()
     assert "Running Static placer" in log and "HeAP" not in log
-    # The floorplan: one unit on the first twelve sites of the snake order.
+    # The floorplan: one unit on the first twelve sites of the snake order,
+    # where nextpnr placed them (its written design names each cell's site).
     import floorplan  # scripts/floorplan.py
-    assert s["floorplan"] == "dsp" and "Placed 12 cells based on constraints" in log
-    assert s["dsp_sites"] == {"u_dut.g_unit[0].u_unit": [floorplan.dsp_sites()[0], floorplan.dsp_sites()[11]]}
+    sites = floorplan.dsp_sites()
+    assert s["floorplan"] == "dsp" and s["dsp_sites"] == {"u_dut.g_unit[0].u_unit": [sites[0], sites[11]]}
+    (placed,) = (m["cells"] for m in json.loads((rundir / "placed.json").read_text())["modules"].values())
+    bels = sorted(c["attributes"]["NEXTPNR_BEL"] for c in placed.values() if c["type"] == "MULT18X18D")
+    assert bels == sorted(sites[:12]), bels
     assert "detailed_net_timings" in json.loads((rundir / "report.json").read_text())
     assert s["array"]["units"] == 2
     assert s["array"]["box_tests_per_s"]["8"] == round(s["fmax_mhz"]["8"]["median"] * 1e6 * 2)
@@ -163,11 +170,11 @@ def test_cascade_yosys(tmp_path):
     s = json.loads((folder / "summary.json").read_text())
     assert s["rst_stages"] == 2 and s["floorplan"] == "dsp" and s["name"] == folder.name
     cells = json.loads((folder / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]["cells"]
-    # The reset tree: the harness's reset flop, two stages per cascade (2)
-    # and per plain unit (1), one copy per harness lane (5) and escalation
-    # stream (2): 14 flops named after a reset net.
+    # The reset tree: the harness's reset flop, then chains of two per
+    # cascade (2), plain unit (1), harness lane (5) and escalation stream
+    # (2): 21 flops named after a reset net.
     rst_ffs = sorted(n for n, c in cells.items() if c["type"] == "TRELLIS_FF" and "rst" in n)
-    assert len(rst_ffs) == 1 + 2 * 2 + 2 + 5 + 2, rst_ffs
+    assert len(rst_ffs) == 1 + 2 * (2 + 1 + 5 + 2), rst_ffs
     import floorplan  # scripts/floorplan.py
     bels = sorted((floorplan.dsp_sites().index(c["attributes"]["BEL"]), n) for n, c in cells.items()
                   if c["type"] == "MULT18X18D")
