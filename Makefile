@@ -350,7 +350,7 @@ endif
 #             placed and routed on the LFE5U-85F (SEEDS, SPEEDS); the array's
 #             own box tests per second beside the one-unit extrapolation of
 #             out/synth/<C>x<D>/summary.json (make synth first). Results in
-#             out/synth/array_<NDSP>x<NLUT>_<C>x<D>[_p<P>]_r2_fp/summary.json. A full chip
+#             out/synth/array_<NDSP>x<NLUT>_<C>x<D>[_p<P>]_r3_fp/summary.json. A full chip
 #             takes nextpnr minutes to an hour per seed and grade on 2 cores.
 #             CASCADE=[M*]N:CxD:WCxWD places M pluecker_cascades instead (N
 #             narrow TERNARY lanes at CxD, one wide unit at WCxWD each; e.g.
@@ -369,7 +369,7 @@ endif
 #             nextpnr options: SYNTH_FLAGS=--nextpnr-arg=--OPTION=VALUE,
 #             synth_ecp5 options: SYNTH_FLAGS=--synth-flag=-nolutram.
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
-#             front of its reset (2 by default; 0: one reset net for the
+#             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
 #             on consecutive sites, scripts/floorplan.py) or none. Both add
 #             to the folder's name (_r<K>, _fp).
@@ -377,7 +377,7 @@ CHIP       ?= 13x0
 ROUTER     ?= router2
 PLACER     ?= heap
 PIPELINE   ?= 0
-RST_STAGES ?= 2
+RST_STAGES ?= 3
 FLOORPLAN  ?= dsp
 .PHONY: chip
 chip: setup
