@@ -107,33 +107,18 @@ module ooc_cascade_wrapper #(
     assign esc_rst = {M{ooc_rst_q}};
     assign cascade_rst = {M{ooc_rst_q}};
   end else begin : g_rst_tree
-    for (genvar l = 0; l < N; l++) begin : g_lane_rst
-      logic [RST_STAGES-1:0] ooc_chain_q;
-      (* keep *)
-      always_ff @(posedge clk_i) begin
-        ooc_chain_q[0] <= ooc_rst_q;
-        for (int s = 1; s < RST_STAGES; s++) ooc_chain_q[s] <= ooc_chain_q[s-1];
-      end
-      assign lane_rst[l] = ooc_chain_q[RST_STAGES-1];
-    end
-    for (genvar m = 0; m < M; m++) begin : g_esc_rst
-      logic [RST_STAGES-1:0] ooc_chain_q;
-      (* keep *)
-      always_ff @(posedge clk_i) begin
-        ooc_chain_q[0] <= ooc_rst_q;
-        for (int s = 1; s < RST_STAGES; s++) ooc_chain_q[s] <= ooc_chain_q[s-1];
-      end
-      assign esc_rst[m] = ooc_chain_q[RST_STAGES-1];
-    end
-    for (genvar m = 0; m < M; m++) begin : g_cascade_rst
+    // Chain c: lane c (c < N), escalation stream c - N, cascade c - N - M.
+    wire [N+2*M-1:0] chain_end;
+    for (genvar c = 0; c < N + 2 * M; c++) begin : g_chain
       logic [RST_STAGES-1:0] ooc_rst_chain_q;
       (* keep *)
       always_ff @(posedge clk_i) begin
         ooc_rst_chain_q[0] <= ooc_rst_q;
         for (int s = 1; s < RST_STAGES; s++) ooc_rst_chain_q[s] <= ooc_rst_chain_q[s-1];
       end
-      assign cascade_rst[m] = ooc_rst_chain_q[RST_STAGES-1];
+      assign chain_end[c] = ooc_rst_chain_q[RST_STAGES-1];
     end
+    assign {cascade_rst, esc_rst, lane_rst} = chain_end;
   end
 
   for (genvar l = 0; l < N; l++) begin : g_lane_ctrl

@@ -594,6 +594,19 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
     return summary
 
 
+def _placed_rates(fig: dict, extrapolation: str, alone: str) -> str:
+    """A placed chip's box tests per second and what it keeps of the
+    extrapolation and of the same units alone (array_figures,
+    cascade_chip_figures)."""
+    rate = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in fig["box_tests_per_s"].items())
+    text = f"box tests/s {rate}"
+    if fig.get("of_extrapolation"):
+        text += " = " + ", ".join(f"{r:.0%}" for r in fig["of_extrapolation"].values()) + f" of the {extrapolation}"
+    if fig.get("of_same_units_alone"):
+        text += "; " + ", ".join(f"{r:.0%}" for r in fig["of_same_units_alone"].values()) + f" of the {alone}"
+    return text
+
+
 def print_table(summaries: list[dict], speeds: list[int]) -> None:
     head = f"{'config':>22} {'LUT4':>6} {'CCU2C':>6} {'FF':>6} {'dutFF':>6} {'MULT':>5} {'lat':>4}"
     for s in speeds:
@@ -610,27 +623,14 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             line += f"  {cell:>26}"
         if sm.get("array"):  # the placed array's own rate, and what it keeps of the extrapolation
             a = sm["array"]
-            rate = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in a["box_tests_per_s"].items())
-            line += f"  {a['units']} units placed; box tests/s {rate}"
-            if a.get("of_extrapolation"):
-                line += " = " + ", ".join(f"{r:.0%}" for r in a["of_extrapolation"].values()) + (
-                    " of the one-unit extrapolation")
-            if a.get("of_same_units_alone"):
-                line += "; " + ", ".join(f"{r:.0%}" for r in a["of_same_units_alone"].values()) + (
-                    " of the same units at their one-unit Fmax")
-            elif not a.get("extrapolation"):
+            line += f"  {a['units']} units placed; " + _placed_rates(
+                a, "one-unit extrapolation", "same units at their one-unit Fmax")
+            if not a.get("of_same_units_alone") and not a.get("extrapolation"):
                 line += " (no one-unit summary in this --out folder to compare with)"
         elif sm.get("cascade_chip"):  # a chip of cascades (and plain units): its own rate
             a = sm["cascade_chip"]
-            rate = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in a["box_tests_per_s"].items())
             line += (f"  {a['cascades']} cascades, {a['lanes']} lanes, {a['wide_units']} plain units placed; "
-                     f"box tests/s {rate}")
-            if a.get("of_extrapolation"):
-                line += " = " + ", ".join(f"{r:.0%}" for r in a["of_extrapolation"].values()) + (
-                    " of the one-cascade extrapolation")
-            if a.get("of_same_units_alone"):
-                line += "; " + ", ".join(f"{r:.0%}" for r in a["of_same_units_alone"].values()) + (
-                    " of the same cascades and units placed alone")
+                     + _placed_rates(a, "one-cascade extrapolation", "same cascades and units placed alone"))
         elif sm.get("units_per_chip"):
             chip = ", ".join(f"speed {sp}: {v / 1e9:.2f} G" for sp, v in sm["box_tests_per_s_per_chip"].items())
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
