@@ -60,20 +60,16 @@ module ooc_array_wrapper #(
   always_ff @(posedge clk_i) ooc_rst_q <= rst_i;
 
   for (genvar l = 0; l < N; l++) begin : g_lane
+    // A kept chain as deep as a unit's (one per lane), so that the
+    // harness's reset reaches the far lanes in as many hops.
     wire lane_rst;
-    if (RST_STAGES == 0) begin : g_rst_direct
-      assign lane_rst = ooc_rst_q;
-    end else begin : g_rst_copy
-      // A chain as deep as a unit's (one per lane, kept: not merged), so
-      // that the harness's reset reaches the far lanes in as many hops.
-      logic [RST_STAGES-1:0] ooc_lane_rst_q;
-      (* keep *)
-      always_ff @(posedge clk_i) begin
-        ooc_lane_rst_q[0] <= ooc_rst_q;
-        for (int s = 1; s < RST_STAGES; s++) ooc_lane_rst_q[s] <= ooc_lane_rst_q[s-1];
-      end
-      assign lane_rst = ooc_lane_rst_q[RST_STAGES-1];
-    end
+    pluecker_rst_chain #(
+        .STAGES(RST_STAGES)
+    ) u_lane_rst (
+        .clk_i(clk_i),
+        .rst_i(ooc_rst_q),
+        .rst_o(lane_rst)
+    );
     always_ff @(posedge clk_i) begin
       if (lane_rst) begin
         ooc_in_valid_q[l]  <= 1'b0;

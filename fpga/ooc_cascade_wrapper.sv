@@ -102,24 +102,18 @@ module ooc_cascade_wrapper #(
   // would otherwise be merged into one).
   wire [N-1:0] lane_rst;
   wire [M-1:0] esc_rst, cascade_rst;
-  if (RST_STAGES == 0) begin : g_rst_direct
-    assign lane_rst = {N{ooc_rst_q}};
-    assign esc_rst = {M{ooc_rst_q}};
-    assign cascade_rst = {M{ooc_rst_q}};
-  end else begin : g_rst_tree
-    // Chain c: lane c (c < N), escalation stream c - N, cascade c - N - M.
-    wire [N+2*M-1:0] chain_end;
-    for (genvar c = 0; c < N + 2 * M; c++) begin : g_chain
-      logic [RST_STAGES-1:0] ooc_rst_chain_q;
-      (* keep *)
-      always_ff @(posedge clk_i) begin
-        ooc_rst_chain_q[0] <= ooc_rst_q;
-        for (int s = 1; s < RST_STAGES; s++) ooc_rst_chain_q[s] <= ooc_rst_chain_q[s-1];
-      end
-      assign chain_end[c] = ooc_rst_chain_q[RST_STAGES-1];
-    end
-    assign {cascade_rst, esc_rst, lane_rst} = chain_end;
+  // Chain c: lane c (c < N), escalation stream c - N, cascade c - N - M.
+  wire [N+2*M-1:0] chain_end;
+  for (genvar c = 0; c < N + 2 * M; c++) begin : g_chain
+    pluecker_rst_chain #(
+        .STAGES(RST_STAGES)
+    ) u_rst (
+        .clk_i(clk_i),
+        .rst_i(ooc_rst_q),
+        .rst_o(chain_end[c])
+    );
   end
+  assign {cascade_rst, esc_rst, lane_rst} = chain_end;
 
   for (genvar l = 0; l < N; l++) begin : g_lane_ctrl
     always_ff @(posedge clk_i) begin

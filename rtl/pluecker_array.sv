@@ -90,26 +90,14 @@ module pluecker_array #(
     localparam logic [31:0] STYLE = (l < N_DSP) ? 32'("dsp") : 32'("lut");
     wire unused_strict;
     wire unit_rst;
-    if (RST_STAGES == 0) begin : g_rst_direct
-      assign unit_rst = rst_i;
-    end else begin : g_rst_tree
-      // Kept: one chain per unit (identical flops would be merged into one,
-      // the single chip-wide net this chain is there to avoid). No reset of
-      // their own: they carry the reset.
-      logic [RST_STAGES-1:0] rst_q;
-`ifndef SYNTHESIS
-      // Simulation: the chain starts in reset, so that each unit sees rst_i
-      // high from its first clock as without the tree (its assertions
-      // check from the first clock with rst_i low).
-      initial rst_q = '1;
-`endif
-      (* keep *)
-      always_ff @(posedge clk_i) begin
-        rst_q[0] <= rst_i;
-        for (int s = 1; s < RST_STAGES; s++) rst_q[s] <= rst_q[s-1];
-      end
-      assign unit_rst = rst_q[RST_STAGES-1];
-    end
+    // One kept chain per unit (rtl/pluecker_rst_chain.sv).
+    pluecker_rst_chain #(
+        .STAGES(RST_STAGES)
+    ) u_rst (
+        .clk_i(clk_i),
+        .rst_i(rst_i),
+        .rst_o(unit_rst)
+    );
     pluecker_intersector #(
         .COORD_BITS(COORD_BITS),
         .DIR_BITS(DIR_BITS),

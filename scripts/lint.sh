@@ -39,9 +39,10 @@
 #      and synth_ecp5 -noflatten runs to LUT mapping at 16/16 with the
 #      contract's MULT18X18D count.
 #   8. The array (pluecker_array): -Wall with mixed DSP and fabric lanes at
-#      four configurations (reset trees of 0, 1 and 3 stages); empty or
-#      negative lane counts, fabric lanes wider than 17 bits and more than
-#      8 reset stages are refused.
+#      four configurations (reset trees of 0, 1 and 3 stages) and its
+#      reset chain (pluecker_rst_chain) as top at 0, 1 and 8 stages; empty
+#      or negative lane counts, fabric lanes wider than 17 bits and more
+#      than 8 reset stages are refused.
 #   9. The ternary unit (TERNARY = 1) and the cascade (pluecker_cascade):
 #      -Wall at several narrow/wide widths, with and without ASSERT_ON;
 #      TERNARY without CONSERVATIVE, no lanes and a wide format narrower
@@ -535,6 +536,11 @@ for cfg in "1 1 $LO $LO 0" "2 1 16 16 1" "1 0 $HI $HI 0" "0 3 8 8 3"; do
 done
 refused "verilator rejects array RST_STAGES=9" "RST_STAGES must be 0..8" -GRST_STAGES=9 \
     --top-module pluecker_array "${SOURCES[@]}"
+for k in 0 1 8; do
+    LINT_TOP=pluecker_rst_chain lint_clean "verilator -Wall reset chain STAGES=$k" -GSTAGES="$k"
+done
+refused "verilator rejects reset chain STAGES=9" "STAGES must be 0..8" -GSTAGES=9 --top-module pluecker_rst_chain \
+    rtl/pluecker_rst_chain.sv
 refused "verilator rejects array N_DSP=0 N_LUT=0" "N_DSP + N_LUT must be" -GN_DSP=0 -GN_LUT=0 -Wno-ASCRANGE \
     --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array N_DSP=-1" "must not be negative" -GN_DSP=-1 -GN_LUT=2 \
