@@ -244,23 +244,31 @@ def cell_types(netlist_path: Path, top: str) -> dict[str, str]:
         return {name: cell["type"] for name, cell in json.load(f)["modules"][top]["cells"].items()}
 
 
+# The instances a harness wraps: u_dut (of the wrapper, or of one of its
+# generate blocks) and the cascade harness's plain units, u_wide.
+_DUT_PATH = re.compile(r"^(g_\w+(\[\d+\])?\.)?u_(dut|wide)\.")
+# Modules a harness instantiates for itself too (its lanes' reset chains).
+HARNESS_SHARED_RTL = ("pluecker_rst_chain.sv",)
+
+
 def harness_flip_flops(netlist_path: Path, design: Design) -> int:
     """The number of flip-flops of the harness.
 
     A flip-flop belongs to the harness when its Yosys 'src' attribute points
-    into the harness file only, or when it has no source and its name is not
-    in the u_dut hierarchy (of the wrapper, or of one of its generate
-    blocks)."""
+    into the harness file only; when it has no source, or its source is a
+    module the harness instantiates itself (HARNESS_SHARED_RTL, the reset
+    chains), and its name is not in the hierarchy of the wrapped design."""
     with open(netlist_path) as f:
         cells = json.load(f)["modules"][design.top]["cells"]
     harness_ff = 0
     for name, cell in cells.items():
-        if cell["type"] == "TRELLIS_FF":
-            srcs = design_sources(cell.get("attributes", {}).get("src", ""))
-            if srcs and all(design.wrapper.name in s for s in srcs):
-                harness_ff += 1
-            elif not srcs and not re.match(r"^(g_\w+\.)?u_dut\.", name):
-                harness_ff += 1  # e.g. output flops merged with a RAM read port
+        if cell["type"] != "TRELLIS_FF":
+            continue
+        srcs = design_sources(cell.get("attributes", {}).get("src", ""))
+        if srcs and all(design.wrapper.name in s for s in srcs):
+            harness_ff += 1
+        elif all(any(m in s for m in HARNESS_SHARED_RTL) for s in srcs) and not _DUT_PATH.match(name):
+            harness_ff += 1  # no source (e.g. output flops merged with a RAM read port), or a lane's reset chain
     return harness_ff
 
 

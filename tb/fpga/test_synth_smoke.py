@@ -253,3 +253,30 @@ def test_cascade_chip_figures_same_units_alone(tmp_path):
                         dict(params, N_CASCADES=5, N_WIDE=0), {}, fields)
     fig = synth.cascade_chip_figures(pure, {"8": {"median": 100.0}}, tmp_path)
     assert fig["of_extrapolation"] == {"8": 0.25} and fig["of_same_units_alone"] == {"8": 0.5}
+
+
+def test_harness_flip_flops(tmp_path):
+    """Which flip-flops of a netlist are the harness's (no tools): its own
+    registers, flops without a source outside the design, and the reset
+    chains it instantiates for its lanes; not the design's, its units'
+    reset chains included."""
+    src = "../../../{}:1.1-2.2|/share/lattice/cells_map_trellis.v:16.100-16.154"
+    cells = {
+        "ooc_rst_q_TRELLIS_FF_Q": "fpga/ooc_cascade_wrapper.sv",                        # harness
+        "g_lane_ctrl[0].ooc_in_valid_q_TRELLIS_FF_Q": "fpga/ooc_cascade_wrapper.sv",    # harness
+        "g_chain[3].u_rst.g_chain.rst_q_TRELLIS_FF_Q": "rtl/pluecker_rst_chain.sv",      # harness chain
+        "g_chain[3].u_rst.g_chain.rst_q_TRELLIS_FF_Q_1": "rtl/pluecker_rst_chain.sv",    # harness chain
+        "ooc_out_tag_q_TRELLIS_FF_Q_7": None,                                            # harness, no source
+        "g_wide.u_wide.g_unit[0].u_rst.g_chain.rst_q_TRELLIS_FF_Q": "rtl/pluecker_rst_chain.sv",  # a unit's
+        "g_cascade[1].u_dut.u_wide.v_q_TRELLIS_FF_Q": "rtl/pluecker_intersector.sv",
+        "g_cascade[1].u_dut.g_lane[0].credits_q_TRELLIS_FF_Q": None,                     # design, no source
+        "u_dut.g_unit[2].u_rst.g_chain.rst_q_TRELLIS_FF_Q": "rtl/pluecker_rst_chain.sv",  # an array unit's
+    }
+    netlist = {"modules": {"ooc_cascade_wrapper": {"cells": {
+        n: {"type": "TRELLIS_FF", "attributes": {"src": src.format(f)} if f else {}} for n, f in cells.items()}
+        | {"u_dut.lut": {"type": "LUT4", "attributes": {"src": src.format("fpga/ooc_cascade_wrapper.sv")}}}}}}
+    path = tmp_path / "netlist.json"
+    path.write_text(json.dumps(netlist))
+    design = synth.Design("cascade_1x2_8x8_16x16", "ooc_cascade_wrapper", Path("ooc_cascade_wrapper.sv"),
+                          "pluecker_cascade", {}, {})
+    assert synth.harness_flip_flops(path, design) == 5
