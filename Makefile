@@ -368,7 +368,7 @@ endif
 #             measured chips use PIPELINE=2 (README, fpga/TIMING.md); more
 #             nextpnr options: SYNTH_FLAGS=--nextpnr-arg=--OPTION=VALUE,
 #             synth_ecp5 options: SYNTH_FLAGS=--synth-flag=-nolutram.
-#             FREQ=205 SYNTH_FLAGS=--nextpnr-arg=--tmg-ripup gave the 13x0
+#             SPEEDS=8 FREQ=205 SYNTH_FLAGS=--nextpnr-arg=--tmg-ripup gave the 13x0
 #             16/16 chip (PIPELINE=2) its best median; the rip-up never ends
 #             at a target the placement cannot meet (fpga/TIMING.md).
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
