@@ -5,9 +5,10 @@
 // and ends at a flip-flop and nextpnr (--out-of-context) needs no pins.
 // Timing and utilisation only: the extra register stage delays in_ready_o
 // by a cycle, so the harness does not keep the valid/ready contract. Its
-// flip-flops are named ooc_*_q (counted apart from the array's). With
-// RST_STAGES > 0 (the array's reset tree) the harness's lane flops take
-// their reset from a kept chain per lane too, so no reset net spans the chip.
+// flip-flops are named ooc_*_q, besides its lanes' reset chains (u_lane_rst;
+// all counted apart from the array's). With RST_STAGES > 0 (the array's
+// reset tree) the harness's lane flops take their reset from a kept chain
+// per lane too, so no reset net spans the chip.
 `default_nettype none
 
 module ooc_array_wrapper #(

@@ -14,8 +14,9 @@
 // cascades puts them to work as further wide units. Timing and
 // utilisation only: the extra register stage delays the ready bits by a
 // cycle, so the harness does not keep the valid/ready contract. Its
-// flip-flops are named ooc_*_q (counted apart from the cascades'); the
-// valid and ready bits are reset, the rest are not. RST_STAGES > 0 builds
+// flip-flops are named ooc_*_q, besides the reset chains it builds
+// (g_chain; all counted apart from the cascades'); the valid and ready
+// bits are reset, the rest are not. RST_STAGES > 0 builds
 // a reset tree, so that no reset net spans the chip: each cascade takes
 // its rst_i from a kept chain of RST_STAGES flops of its own, the plain
 // units from theirs (pluecker_array's RST_STAGES), the harness's flops of
