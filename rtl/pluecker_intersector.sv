@@ -32,8 +32,9 @@
 // Pipeline (one query per clock; the datapath never stalls, there is no
 // clock enable on it: valid bits shift every cycle and back-pressure is
 // handled by an output FIFO and a credit counter)
-//   S0  subtract in front of the input registers (from the ports: the class
-//       picks the operands, one LUT level, then a carry chain): A_i, B_i
+//   S0  subtract in front of the input registers (from the ports: both
+//       classes' differences, carry chains, then the class picks the
+//       results, one LUT level): A_i, B_i
 //       and the end tests G_i >= 0, G_i >= 2 are registered, so that the
 //       multipliers' operands leave flops straight for their input
 //       registers (on a full chip the DSP columns are crowded and the
@@ -338,29 +339,36 @@ module pluecker_intersector #(
 
   for (genvar i = 0; i < 3; i++) begin : g_sel
     wire n = ray_class_i[i];
-    wire [C-1:0] o = ray_org_i[i*C+:C];
+    wire [C-1:0] o0 = ray_org_i[i*C+:C];
     wire [C-1:0] lo = box_min_i[i*C+:C];
     wire [C-1:0] hi = box_max_i[i*C+:C];
-    wire [C-1:0] e = ray_end_i[i*C+:C];
-    // The operands the class selects (one LUT level), sign-extended.
-    wire [C-1:0] al0_d = n ? o : lo;
-    wire [C-1:0] ar0_d = n ? hi : o;
-    wire [C-1:0] bl0_d = n ? o : hi;
-    wire [C-1:0] br0_d = n ? lo : o;
-    wire [C-1:0] gl0_d = n ? hi : e;
-    wire [C-1:0] gr0_d = n ? e : lo;
-    wire signed [WA-1:0] al = {al0_d[C-1], al0_d};
-    wire signed [WA-1:0] ar = {ar0_d[C-1], ar0_d};
-    wire signed [WA-1:0] bl = {bl0_d[C-1], bl0_d};
-    wire signed [WA-1:0] br = {br0_d[C-1], br0_d};
-    wire signed [WA-1:0] gl = {gl0_d[C-1], gl0_d};
-    wire signed [WA-1:0] gr = {gr0_d[C-1], gr0_d};
-    wire signed [WA-1:0] g = gl - gr;
+    wire [C-1:0] e0 = ray_end_i[i*C+:C];
+    // Sign-extended to WA bits.
+    wire signed [WA-1:0] o = {o0[C-1], o0};
+    wire signed [WA-1:0] l = {lo[C-1], lo};
+    wire signed [WA-1:0] h = {hi[C-1], hi};
+    wire signed [WA-1:0] e = {e0[C-1], e0};
+    // Both classes' differences straight from the ports (six carry chains),
+    // then the class picks the results (one LUT level before the flops).
+    // So the class bit drives only the 2 x WA + 2 result multiplexers, not
+    // six C-bit operand multiplexers in front of three chains: on a full
+    // chip that fan-out (about 100 LUT inputs from one flop) limited Fmax.
+    wire signed [WA-1:0] a_pos = l - o;  // entry plane, positive axis
+    wire signed [WA-1:0] a_neg = o - h;  // entry plane, negative axis
+    wire signed [WA-1:0] b_pos = h - o;  // exit plane, positive axis
+    wire signed [WA-1:0] b_neg = o - l;  // exit plane, negative axis
+    wire signed [WA-1:0] g_pos = e - l;  // end test, positive axis
+    wire signed [WA-1:0] g_neg = h - e;  // end test, negative axis
+    // G >= 0 and G >= 2 of each class, then the class picks.
+    wire gp_in = !g_pos[WA-1];
+    wire gn_in = !g_neg[WA-1];
+    wire gp_in2 = gp_in && (|g_pos[WA-2:1]);
+    wire gn_in2 = gn_in && (|g_neg[WA-2:1]);
     always_ff @(posedge clk_i) begin
-      a0_q[i] <= al - ar;
-      b0_q[i] <= bl - br;
-      end_in0_q[i] <= !g[WA-1];
-      end_in20_q[i] <= !g[WA-1] && (|g[WA-2:1]);
+      a0_q[i] <= n ? a_neg : a_pos;
+      b0_q[i] <= n ? b_neg : b_pos;
+      end_in0_q[i] <= n ? gn_in : gp_in;
+      end_in20_q[i] <= n ? gn_in2 : gp_in2;
     end
   end
 
