@@ -5,7 +5,7 @@
 // (Mahovsky & Wyvill, JGT 9(1) 2004: the ray class selects the box planes,
 // then an origin test, a segment-end test and six 2x2 determinant sign tests
 // on the silhouette edges). One datapath serves all eight ray classes: the
-// class bits only steer operand multiplexers.
+// class bits only steer multiplexers (in S0, which differences are kept).
 //
 // Ports
 //   in_*   one query per transfer (in_valid_i && in_ready_o at a rising edge
