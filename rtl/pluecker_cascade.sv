@@ -72,12 +72,13 @@
 // queries per clock while N_NARROW * e <= 1; above that the wide unit sets
 // the pace (lanes wait through their credits, nothing is lost).
 //
-// Per lane, the wide query waits in a FIFO beside the narrow unit (of the
-// narrow unit's FIFO_DEPTH): written when the narrow unit takes the query
-// (from registers, a clock later), read when its answer leaves the answer
-// register. The narrow unit holds at most FIFO_DEPTH queries (its
-// credits) and the answer register two more, so the lane takes no query
-// while the side FIFO is full (a flop).
+// Per lane, the wide query waits in a FIFO beside the narrow unit (of
+// SIDE_DEPTH entries, below): written when the narrow unit takes the query
+// (from registers, a clock later), read in the clock after its answer
+// leaves the answer register (its pointers move a clock after their
+// events, from registers). The narrow unit holds at most FIFO_DEPTH
+// queries (its credits) and the answer register two more, so the lane
+// takes no query while the side FIFO counts itself full (a flop).
 //
 // Outputs from flops through the narrow units' output FIFOs and a few gates
 // (no combinational path from any input to any output).
@@ -150,7 +151,14 @@ module pluecker_cascade #(
   localparam logic [31:0] NARROW_STYLE_S = 32'(NARROW_MUL_STYLE);
   localparam int NARROW_CLASS = pluecker_contract_pkg::contract_class(NARROW_COORD_BITS, NARROW_DIR_BITS,
                                                                        NARROW_STYLE_S, PIPELINE);
-  localparam int SIDE_DEPTH = (NARROW_CLASS < 0) ? 16 : pluecker_contract_pkg::contract_fifo_depth(NARROW_CLASS);
+  // The side FIFO's depth: the smallest power of two of at least the narrow
+  // unit's LATENCY + 4, so that a lane takes a query every clock (its
+  // occupancy counts a query from the clock after its push to the second
+  // clock after its answer leaves the answer register). Measured with
+  // pluecker_sim_cascade check: 16 entries keep the full rate at LATENCY
+  // 6, 8 and 10; 8 entries at LATENCY 6 cost 16 % of it.
+  localparam int NARROW_LATENCY = (NARROW_CLASS < 0) ? 12 : pluecker_contract_pkg::contract_latency(NARROW_CLASS);
+  localparam int SIDE_DEPTH = 1 << $clog2(NARROW_LATENCY + 4);
   localparam int SIDE_AW = $clog2(SIDE_DEPTH);
   // A control flop that drives a wide query's register enables, write
   // enables or multiplexer selects (the registered grant, the slots' valid
@@ -253,15 +261,21 @@ module pluecker_cascade #(
     // register: a lane takes no query while it is full.
     assign in_ready_o[l] = n_in_ready[l] && !side_full;
 
-    // The escalation slot (valid bit reset, contents not). While empty it
-    // loads the head of the answer register and of the side FIFO every
-    // clock, so the clock that fills it loads the uncertain answer's query;
-    // full, it holds. Its enable is a copy of the inverted valid bit per
-    // CTRL_FANOUT bits (a flop each; the certain/uncertain decision does
-    // not fan out to the WQ flops).
+    // The escalation slot (valid bit reset, contents not). While empty its
+    // tag loads the head of the answer register every clock, so the clock
+    // that fills it loads the uncertain answer's tag; full, it holds. Its
+    // wide query follows a clock later: the side FIFO's read pointers move
+    // a clock after the answer leaves (below), so in the clock after the
+    // slot fills the FIFO's head is still that answer's query, and the
+    // query register loads while the slot was empty a clock before
+    // (slot_vd_rep_q, a copy per CTRL_FANOUT bits: the certain/uncertain
+    // decision does not fan out to the WQ flops). A grant reads the query
+    // no earlier than the second clock after the slot filled, and the slot
+    // refills no earlier than the clock after the grant emptied it, so
+    // the register holds through the read.
     logic [TAG_BITS-1:0] slot_tag_q;
     logic [WQ-1:0] slot_query_q;
-    logic [CTRL_COPIES-1:0] slot_v_rep_q;
+    logic [CTRL_COPIES-1:0] slot_v_rep_q, slot_vd_rep_q;
     always_ff @(posedge clk_i) begin
       if (rst_i) slot_v_q[l] <= 1'b0;
       else if (slot_load) slot_v_q[l] <= 1'b1;
@@ -275,52 +289,66 @@ module pluecker_cascade #(
         else if (slot_take) slot_v_rep_q[r] <= 1'b0;
       end
     end
+    // (control, reset)
+    (* keep *)
+    always_ff @(posedge clk_i) begin
+      if (rst_i) slot_vd_rep_q <= '0;
+      else slot_vd_rep_q <= slot_v_rep_q;
+    end
     always_ff @(posedge clk_i) begin
       if (!slot_v_q[l]) slot_tag_q <= a_tag[l*TAG_BITS+:TAG_BITS];
       for (int b = 0; b < WQ; b++)
-        if (!slot_v_rep_q[b/CTRL_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];
+        if (!slot_vd_rep_q[b/CTRL_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];
     end
     assign slot_tag[l*TAG_BITS+:TAG_BITS] = slot_tag_q;
     assign slot_query[l*WQ+:WQ] = slot_query_q;
 
-    // The side FIFO of wide queries (pointers reset, contents not). A push
-    // is written one clock later from registers (data, and one copy of the
-    // write enable and of the write address per CTRL_FANOUT bits: no net
-    // from the handshake's logic, and no single flop, fans out to the
-    // WQ / 4 distributed-RAM blocks; on a whole chip one address flop for
-    // all of them was the longest route). Likewise each chunk reads at its
-    // own copy of the read pointer (into the slot's register). An
-    // entry is read no earlier than the narrow unit's LATENCY after its
+    // The side FIFO of wide queries (pointers reset, contents not). Every
+    // pointer and count moves a clock after its event, from registers, so
+    // neither the lane's handshake (push: in the narrow unit's region) nor
+    // the answer register's (pop) reaches more than a few flops: a push is
+    // written a clock later (each CTRL_FANOUT-bit chunk of the FIFO has its
+    // own copy of the delayed push, we_q, and its own write pointer, which
+    // we_q moves on), and each chunk's read pointer moves on its own copy
+    // of the delayed pop (pop_rep_q). So in the clock after a pop the head
+    // is still the popped answer's query, which the slot loads then (above).
+    // An entry is read no earlier than the narrow unit's LATENCY after its
     // push, and a freed one is written only after a later push.
-    logic [SIDE_AW:0] side_wr_q;
-    // Its occupancy, a thermometer code (bit i set: more than i entries),
-    // so that "full" is a flop of its own; a read counts one clock late
-    // (pop_q: the count is never below the truth, the answer path does not
-    // reach it).
+    // The occupancy, a thermometer code (bit i set: more than i entries),
+    // counts pushes and pops a clock late (push_q, pop_q), so it may be one
+    // push short of the truth and a pop over it: the lane takes no query
+    // while it counts more than SIDE_DEPTH - 2 (side_full, a flop), so it
+    // never holds more than SIDE_DEPTH (queries in the narrow unit, in the
+    // answer register and the one being written).
     logic [SIDE_DEPTH-1:0] side_occ_q;
-    logic pop_q;
+    logic push_q, pop_q;
     wire push = in_valid_i[l] && in_ready_o[l];
     wire pop = a_valid[l] && a_ready[l];
     always_ff @(posedge clk_i) begin
       if (rst_i) begin
-        side_wr_q <= '0;
         side_occ_q <= '0;
+        push_q <= 1'b0;
         pop_q <= 1'b0;
       end else begin
-        if (push) side_wr_q <= side_wr_q + 1'b1;
+        push_q <= push;
         pop_q <= pop;
-        if (push && !pop_q) side_occ_q <= {side_occ_q[SIDE_DEPTH-2:0], 1'b1};
-        else if (pop_q && !push) side_occ_q <= side_occ_q >> 1;
+        if (push_q && !pop_q) side_occ_q <= {side_occ_q[SIDE_DEPTH-2:0], 1'b1};
+        else if (pop_q && !push_q) side_occ_q <= side_occ_q >> 1;
       end
     end
-    assign side_full = side_occ_q[SIDE_DEPTH-1];
+    assign side_full = side_occ_q[SIDE_DEPTH-2];
 `ifdef ASSERT_ON
-    // The full read pointer, for the checks alone (each chunk of the FIFO
-    // reads at its own copy of its low bits, which must agree with it).
-    logic [SIDE_AW:0] side_rd_q;
+    // The full pointers, for the checks alone (each chunk of the FIFO
+    // writes and reads at its own copies, which must agree with them).
+    logic [SIDE_AW:0] side_wr_q, side_rd_q;
     always_ff @(posedge clk_i) begin
-      if (rst_i) side_rd_q <= '0;
-      else if (pop) side_rd_q <= side_rd_q + 1'b1;
+      if (rst_i) begin
+        side_wr_q <= '0;
+        side_rd_q <= '0;
+      end else begin
+        if (push) side_wr_q <= side_wr_q + 1'b1;
+        if (pop) side_rd_q <= side_rd_q + 1'b1;
+      end
     end
 `endif
     logic [WQ-1:0] side_wdata_q;
@@ -338,42 +366,47 @@ module pluecker_cascade #(
     for (genvar c = 0; c < CTRL_COPIES; c++) begin : g_side
       localparam int LO = c * CTRL_FANOUT;
       localparam int CW = (WQ - LO < CTRL_FANOUT) ? WQ - LO : CTRL_FANOUT;
-      logic we_q;  // this chunk's copy of the delayed push (control, reset)
+      // this chunk's copies of the delayed push and pop, and its pointers
+      // (control, reset)
+      logic we_q, pop_rep_q;
+      logic [SIDE_AW-1:0] waddr_q, raddr_q;
       (* keep *)
       always_ff @(posedge clk_i) begin
-        if (rst_i) we_q <= 1'b0;
-        else we_q <= push;
+        if (rst_i) begin
+          we_q <= 1'b0;
+          pop_rep_q <= 1'b0;
+          waddr_q <= '0;
+          raddr_q <= '0;
+        end else begin
+          we_q <= push;
+          pop_rep_q <= pop;
+          if (we_q) waddr_q <= waddr_q + 1'b1;
+          if (pop_rep_q) raddr_q <= raddr_q + 1'b1;
+        end
       end
-      // this chunk's copy of the delayed write address (data: read only
-      // with we_q set)
-      logic [SIDE_AW-1:0] waddr_q;
-      (* keep *)
-      always_ff @(posedge clk_i) waddr_q <= side_wr_q[SIDE_AW-1:0];
       logic [CW-1:0] mem_q[SIDE_DEPTH];
       always_ff @(posedge clk_i) begin
         if (we_q) mem_q[waddr_q] <= side_wdata_q[LO+:CW];
       end
-      // this chunk's copy of the read pointer (control, reset)
-      logic [SIDE_AW-1:0] raddr_q;
-      (* keep *)
-      always_ff @(posedge clk_i) begin
-        if (rst_i) raddr_q <= '0;
-        else if (pop) raddr_q <= raddr_q + 1'b1;
-      end
       assign side_head[l*WQ+LO+:CW] = mem_q[raddr_q];
 `ifdef ASSERT_ON
       always_ff @(posedge clk_i) begin
-        if (!rst_i) assert (raddr_q == side_rd_q[SIDE_AW-1:0]);
+        if (!rst_i) begin
+          assert (waddr_q == side_wr_q[SIDE_AW-1:0] - SIDE_AW'(we_q));
+          assert (raddr_q == side_rd_q[SIDE_AW-1:0] - SIDE_AW'(pop_rep_q));
+        end
       end
 `endif
     end
 
 `ifdef ASSERT_ON
     // The side FIFO holds exactly the lane's queries (in the narrow unit
-    // and in the answer register): never more than its depth. (Unlabelled:
-    // Yosys does not prefix labels inside generate blocks, so one label per
-    // lane clashes.)
-    wire [SIDE_AW:0] side_count = side_wr_q - side_rd_q;
+    // and in the answer register) and, for a clock after its pop, the query
+    // the slot may load: never more than its depth. (Unlabelled: Yosys does
+    // not prefix labels inside generate blocks, so one label per lane
+    // clashes.)
+    wire [SIDE_AW:0] side_diff = side_wr_q - side_rd_q;
+    wire [SIDE_AW+1:0] side_count = {1'b0, side_diff} + (SIDE_AW+2)'(pop_q);
     always_ff @(posedge clk_i) begin
       if (!rst_i) assert (32'(side_count) <= SIDE_DEPTH);
     end

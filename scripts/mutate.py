@@ -119,6 +119,9 @@ _EXTRA_STAGE_PTR = (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      
 
 CASCADE_RTL = "rtl/pluecker_cascade.sv"
 CASCADE_TB = "cocotb:tb/pluecker_cascade/test_pluecker_cascade.py::test_pluecker_cascade[n2_8x8_to_16x16]"
+# A cascade whose side FIFOs can fill (narrow FIFO_DEPTH 16 = SIDE_DEPTH; at
+# the 8/8 cascade's FIFO_DEPTH 8 a side FIFO of 16 never fills).
+CASCADE_TB_FULL = "cocotb:tb/pluecker_cascade/test_pluecker_cascade.py::test_pluecker_cascade[n3_6x6_to_12x12_p1]"
 
 MUTANTS: list[Mutant] = [
     # --- RTL datapath --------------------------------------------------------
@@ -196,6 +199,16 @@ MUTANTS: list[Mutant] = [
     Mutant("cascade-side-overflow", "cascade: a narrow unit takes a query while its lane's side FIFO is full "
            "(a wide query overwritten: the lane's in_ready_o low, the query taken twice)",
            [(CASCADE_RTL, ".in_valid_i(in_valid_i[l] && !side_full),", ".in_valid_i(in_valid_i[l]),")],
+           [CASCADE_TB_FULL]),
+    Mutant("cascade-side-count-late", "cascade: the side FIFO's full flag forgets that its count learns of a push "
+           "a clock late (one query more than its depth: a wide query overwritten)",
+           [(CASCADE_RTL, "assign side_full = side_occ_q[SIDE_DEPTH-2];",
+             "assign side_full = side_occ_q[SIDE_DEPTH-1];")],
+           [CASCADE_TB_FULL]),
+    Mutant("cascade-slot-early", "cascade: the slot's wide query loaded in the clock the slot fills, before the "
+           "side FIFO's read pointers reach its answer (another query's wide query escalated)",
+           [(CASCADE_RTL, "if (!slot_vd_rep_q[b/CTRL_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];",
+             "if (!slot_v_rep_q[b/CTRL_FANOUT]) slot_query_q[b] <= side_head[l*WQ+b];")],
            [CASCADE_TB]),
     # The handshake mutants of the formal harness (bounded check).
     Mutant("formal-credit-leak", "RTL: a credit returned on every output handshake, also with an input",
