@@ -371,9 +371,9 @@ endif
 #             SPEEDS=8 FREQ=210 SYNTH_FLAGS=--nextpnr-arg=--tmg-ripup gave the 13x0
 #             16/16 chip (PIPELINE=2) its best median (FREQ=172 the
 #             CASCADE='4*2:8x8:16x16+9' chip its best, FREQ=178 the
-#             '5*2:8x8:16x16+8' one on seed 1, not on seed 2); the
-#             rip-up never ends at a target the
-#             placement cannot meet (215 on the 16/16 chip; fpga/TIMING.md).
+#             '5*2:8x8:16x16+8' one on seed 1, not on seed 2); the rip-up
+#             never ends at a target the placement cannot meet (215 on the
+#             16/16 chip; fpga/TIMING.md).
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
