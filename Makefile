@@ -373,7 +373,12 @@ endif
 #             CASCADE='4*2:8x8:16x16+9' chip its best, FREQ=178 the
 #             '5*2:8x8:16x16+8' one on seed 1, not on seed 2); the rip-up
 #             never ends at a target the placement cannot meet (215 on the
-#             16/16 chip; fpga/TIMING.md).
+#             16/16 chip with the placer's default timing weight;
+#             fpga/TIMING.md). Adding
+#             --nextpnr-arg=--placer-heap-timingweight=30 to SYNTH_FLAGS
+#             gave the 16/16 chip 214.7 MHz at FREQ=215 with rip-up
+#             (median of 3 seeds) and the five-cascade chip's seed 2
+#             175.7 MHz; it slows the mixed 6/6 chip (fpga/TIMING.md).
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
