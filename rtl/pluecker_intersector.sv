@@ -52,11 +52,15 @@
 //       register after every product), MUL_ADD (0 when
 //       both multiplier operands fit 18 bits, i.e. COORD_BITS <= 17 and
 //       DIR_BITS <= 17; else 1 or 2) for the sums of 18x18 partial products
-//       of wider products on ECP5 (pluecker_mul); everything else is only
-//       delayed
-//   S3  combine: T_ij = B_j*D_i - A_i*D_j, margin M_ij
-//   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest)
-//       (split at the margin's width: a short carry chain, see S4);
+//       of wider products on ECP5 (pluecker_mul); the first of them
+//       completes the margin M_ij and registers the half S4 needs (so only
+//       that half, not the margin's parts, waits in the others); everything
+//       else is only delayed
+//   S3  combine: T_ij = B_j*D_i - A_i*D_j (and the margin when there is no
+//       S2x stage)
+//   S4  compare: 2*T_ij + M_ij >= 0 (conservative) or T_ij >= 0 (nearest),
+//       as T_ij + floor(M_ij/2) >= 0: one carry chain whose sign bit is
+//       the S4 register's input;
 //       with TERNARY also the strict test 2*T_ij - M_ij - 2*(D_i+D_j+1) >= 0
 //       (its origin and end tests B_i >= 2, G_i >= 2 ride along from S2)
 //   F   the AND of all tests is written into the output FIFO
@@ -193,9 +197,6 @@ module pluecker_intersector #(
   // Margin M = |A_i| + |B_j| + D_i + D_j + 1 <= 2^(C+1) + 2^(D+1) - 3
   // < 2^(max(C,D)+2), unsigned.
   localparam int WM = ((C > D) ? C : D) + 2;
-  // 2*T + M: |2T| <= 4(2^C - 1)(2^D - 1) and 0 <= M < 2^(C+2) + 2^(D+2) - 4,
-  // so |2T + M| < 2^(C+D+2): WP + 1 = C+D+3 signed bits hold it.
-  localparam int WS = WP + 1;
 
   // Multiplier operands wider than one 18x18 DSP operand (WA = C + 1,
   // WDS = D + 1): each adds one registered adder stage (S2x) to pluecker_mul.
@@ -468,17 +469,43 @@ module pluecker_intersector #(
   end
 
   // -------------------------------------------------------------------------
-  // S2x: S2X = PIPELINE + MUL_ADD stages while the multipliers finish (their
-  // pipeline register, then pluecker_mul's partial-product sums); the other
-  // S2 values only wait.
+  // The margins, from the S2 registers (so in the first S2x stage, or in S3
+  // when there is none): only the halves S4 needs wait for the
+  // multipliers, not their parts (fewer flip-flops in the S2x stages)
+  //   M_ij  = |A_i| + |B_j| + D_i + D_j + 1 = m1_ij + (D_i + D_j + 1) + sign(B_j)
+  //   MS_ij = M_ij + 2*(D_i + D_j + 1), the strict test's margin
+  //   MH_ij = floor(M_ij / 2), MSH_ij = ceil(MS_ij / 2)
+  // For an integer T: 2*T + M >= 0 <=> T >= -M/2 <=> T + floor(M/2) >= 0,
+  // and 2*T - MS >= 0 <=> T >= MS/2 <=> T - ceil(MS/2) >= 0 (S4).
   // -------------------------------------------------------------------------
-  localparam int SIDE_W = 6 * WM1 + 6 * WDD + 3 + 2;
-  wire [SIDE_W-1:0] side2_q = {m12_q, dd2_q, sb2_q, ok2_q, oks2_q};
+  localparam int WMS = WM + 1;  // MS < 2^(WM+1)
+  localparam int WMH = WM - 1;  // MH < 2^(WM-1)
+  localparam int WMSH = WMS;  // MSH <= 2^WM
+  logic [5:0][WM-1:0] m_d;
+  logic [5:0][WMS:0] ms1_d;  // MS + 1
+  logic [5:0][WMH-1:0] mh_d;
+  logic [5:0][WMSH-1:0] msh_d;
+
+  for (genvar k = 0; k < 6; k++) begin : g_margin
+    localparam int J = pair_j(k);
+    assign m_d[k] = WM'(m12_q[k]) + WM'(dd2_q[k]) + WM'(sb2_q[J]);
+    assign mh_d[k] = m_d[k][WM-1:1];
+    assign ms1_d[k] = (WMS + 1)'(m12_q[k]) + (WMS + 1)'({dd2_q[k], 1'b0}) + (WMS + 1)'(dd2_q[k]) +
+        (WMS + 1)'(sb2_q[J]) + 1'b1;
+    assign msh_d[k] = ms1_d[k][WMS:1];
+  end
+
+  // -------------------------------------------------------------------------
+  // S2x: S2X = PIPELINE + MUL_ADD stages while the multipliers finish (their
+  // pipeline register, then pluecker_mul's partial-product sums); the first
+  // registers the margins, the others only delay them.
+  // -------------------------------------------------------------------------
+  localparam int SIDE_W = 6 * WMH + 6 * WMSH + 2;
+  wire [SIDE_W-1:0] side2_d = {mh_d, msh_d, ok2_q, oks2_q};
   wire [TAG_BITS-1:0] tag2x_q;
   wire [SIDE_W-1:0] side2x_q;
-  wire [5:0][WM1-1:0] m12x_q;
-  wire [5:0][WDD-1:0] dd2x_q;
-  wire [2:0] sb2x_q;
+  wire [5:0][WMH-1:0] mh2x_q;
+  wire [5:0][WMSH-1:0] msh2x_q;
   wire ok2x_q, oks2x_q;
 `ifdef ASSERT_ON
   logic [31:0] s2x_in_flight;  // valid bits in the S2x stages
@@ -487,7 +514,7 @@ module pluecker_intersector #(
   if (S2X == 0) begin : g_no_s2x
     assign v2x_q = v2_q;
     assign tag2x_q = tag2_q;
-    assign side2x_q = side2_q;
+    assign side2x_q = side2_d;
 `ifdef ASSERT_ON
     assign s2x_in_flight = '0;
 `endif
@@ -498,7 +525,7 @@ module pluecker_intersector #(
     logic [S2X*SIDE_W-1:0] side_q;
     always_ff @(posedge clk_i) begin
       tag_q  <= (S2X * TAG_BITS)'({tag_q, tag2_q});
-      side_q <= (S2X * SIDE_W)'({side_q, side2_q});
+      side_q <= (S2X * SIDE_W)'({side_q, side2_d});
     end
     always_ff @(posedge clk_i) begin
       if (rst_i) v_q <= '0;
@@ -514,80 +541,66 @@ module pluecker_intersector #(
     end
 `endif
   end
-  assign {m12x_q, dd2x_q, sb2x_q, ok2x_q, oks2x_q} = side2x_q;
+  assign {mh2x_q, msh2x_q, ok2x_q, oks2x_q} = side2x_q;
 
   // -------------------------------------------------------------------------
   // S3: combine
   //   T_ij = B_j*D_i - A_i*D_j
-  //   M_ij = |A_i| + |B_j| + D_i + D_j + 1 = m1_ij + (D_i + D_j + 1) + sign(B_j)
-  //   MS_ij = M_ij + 2*(D_i + D_j + 1), the strict test's margin (< 2^(WM+1))
   // -------------------------------------------------------------------------
-  localparam int WMS = WM + 1;
   logic [5:0][WP-1:0] t_d;
-  logic [5:0][WM-1:0] m_d;
-  logic [5:0][WMS-1:0] ms_d;
 
   for (genvar k = 0; k < 6; k++) begin : g_comb
-    localparam int J = pair_j(k);
     assign t_d[k] = pb2_q[k] - pa2_q[k];
-    assign m_d[k] = WM'(m12x_q[k]) + WM'(dd2x_q[k]) + WM'(sb2x_q[J]);
-    assign ms_d[k] = WMS'(m12x_q[k]) + WMS'({dd2x_q[k], 1'b0}) + WMS'(dd2x_q[k]) + WMS'(sb2x_q[J]);
   end
 
   logic [TAG_BITS-1:0] tag3_q;
   logic [5:0][WP-1:0] t3_q;
-  logic [5:0][WM-1:0] m3_q;
-  logic [5:0][WMS-1:0] ms3_q;
+  logic [5:0][WMH-1:0] mh3_q;
+  logic [5:0][WMSH-1:0] msh3_q;
   logic ok3_q, oks3_q;
 
   always_ff @(posedge clk_i) begin
     tag3_q <= tag2x_q;
     t3_q   <= t_d;
-    m3_q   <= m_d;
-    ms3_q  <= ms_d;
+    mh3_q  <= mh2x_q;
+    msh3_q <= msh2x_q;
     ok3_q  <= ok2x_q;
     oks3_q <= oks2x_q;
   end
 
   // -------------------------------------------------------------------------
-  // S4: compare
+  // S4: compare. Each test is the sign of one sum on one carry chain, whose
+  // top bit the S4 flop takes straight (no LUT after the chain; a set bit
+  // is a failed test):
+  //   conservative  T + MH  < 0  (2*T + M  < 0)
+  //   nearest       T       < 0  (the sign bit of T3, no chain)
+  //   strict        T - MSH < 0  (2*T - MS < 0)
+  // One bit wider than T (WP + 1): T + MH and T - MSH never overflow.
   // -------------------------------------------------------------------------
-  // Both signs without a carry chain over all of 2*T: split
-  // 2*T = H*2^K + L (0 <= L < 2^K) at K = WM, the margin's width
-  // (0 <= M < 2^K), and at KS = WMS for the strict margin MS:
-  //   2*T + M  >= 0  <=>  H >= 0, or H == -1 and L + M >= 2^K (a carry)
-  //   2*T - MS >= 0  <=>  H >= 1, or H == 0 and L >= MS
-  // (H >= 0 alone is T >= 0, the nearest test). Only a K-bit carry chain
-  // and a LUT tree over H remain.
-  localparam int K = WM;
-  localparam int KS = WMS;
-  logic [5:0] edge_ok_d, edge_strict_d;
+  logic [5:0] edge_fail_d, edge_sfail_d;
 
   for (genvar k = 0; k < 6; k++) begin : g_cmp
-    wire [WS-1:0] t2 = {t3_q[k], 1'b0};  // 2*T
-    wire neg = t2[WS-1];
-    wire [K:0] lsum = {1'b0, t2[K-1:0]} + {1'b0, m3_q[k]};
-    wire h_ones = &t2[WS-1:K];
+    wire [WP:0] t_x = {t3_q[k][WP-1], t3_q[k]};
+    wire [WP:0] t_plus_mh = t_x + (WP + 1)'(mh3_q[k]);
+    wire [WP:0] t_minus_msh = t_x - (WP + 1)'(msh3_q[k]);
     // The margin only in conservative mode.
-    assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K]);
-    wire h_zero = !(|t2[WS-1:KS]);
-    wire [KS:0] sdiff = {1'b0, t2[KS-1:0]} - {1'b0, ms3_q[k]};  // top bit: borrow (L < MS)
-    assign edge_strict_d[k] = !neg && (!h_zero || !sdiff[KS]);
+    assign edge_fail_d[k] = CONSERVATIVE ? t_plus_mh[WP] : t3_q[k][WP-1];
+    assign edge_sfail_d[k] = t_minus_msh[WP];
   end
 
   logic [TAG_BITS-1:0] tag4_q;
-  logic [5:0] edge_ok4_q, edge_strict4_q;
+  logic [5:0] edge_fail4_q, edge_sfail4_q;
   logic ok4_q, oks4_q;
 
   always_ff @(posedge clk_i) begin
-    tag4_q     <= tag3_q;
-    edge_ok4_q <= edge_ok_d;
-    ok4_q      <= ok3_q;
-    edge_strict4_q <= edge_strict_d;
-    oks4_q     <= oks3_q;
+    tag4_q        <= tag3_q;
+    edge_fail4_q  <= edge_fail_d;
+    ok4_q         <= ok3_q;
+    edge_sfail4_q <= edge_sfail_d;
+    oks4_q        <= oks3_q;
   end
   // The strict test only exists with TERNARY (else the logic is removed).
-  wire strict4 = TERNARY && oks4_q && (&edge_strict4_q);
+  wire strict4 = TERNARY && oks4_q && !(|edge_sfail4_q);
 
   // -------------------------------------------------------------------------
   // Output FIFO (contents not reset; the pointers are)
@@ -595,7 +608,7 @@ module pluecker_intersector #(
   logic [TAG_BITS+1:0] fifo_q[FIFO_DEPTH];
 
   always_ff @(posedge clk_i) begin
-    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};
+    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && !(|edge_fail4_q), strict4};
   end
 
   assign {out_tag_o, out_hit_o, out_strict_o} = fifo_q[rd_ptr_q[FIFO_AW-1:0]];

@@ -109,10 +109,10 @@ def _class_model(k: int) -> Mutant:
 _EXTRA_STAGE = (
     RTL,
     "  always_ff @(posedge clk_i) begin\n"
-    "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};\n  end",
+    "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && !(|edge_fail4_q), strict4};\n  end",
     "  logic v5_q;\n  logic [TAG_BITS+1:0] res5_q;\n"
     "  always_ff @(posedge clk_i) begin\n"
-    "    v5_q <= rst_i ? 1'b0 : v4_q;\n    res5_q <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};\n  end\n"
+    "    v5_q <= rst_i ? 1'b0 : v4_q;\n    res5_q <= {tag4_q, ok4_q && !(|edge_fail4_q), strict4};\n  end\n"
     "  always_ff @(posedge clk_i) begin\n"
     "    if (v5_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= res5_q;\n  end")
 _EXTRA_STAGE_PTR = (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      if (v5_q) wr_ptr_q <= wr_ptr_q + 1'b1;")
@@ -133,15 +133,14 @@ MUTANTS: list[Mutant] = [
     # or sign(B_j) correction of |A_i|, |B_j| in the margin. A_i < 0 with
     # B_j >= 0 makes T_ij >= 0, so the edge test passes with any margin, and
     # B_j < 0 fails the origin test whatever the margin.
-    # 2T + M = 0 needs T < 0 (M >= 1), i.e. H == -1 and L + M == 2^K: the
-    # carry alone without a zero remainder is 2T + M > 0.
+    # 2T + M > 0 <=> 2T + M - 1 >= 0 <=> T + floor((M - 1)/2) >= 0 (M >= 1):
+    # the half margin taken of M - 1.
     Mutant("rtl-edge-strict", "RTL: edge test 2T + M > 0 instead of >= 0",
-           [(RTL, "assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K]);",
-             "assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K] && (|lsum[K-1:0]));")],
+           [(RTL, "assign mh_d[k] = m_d[k][WM-1:1];", "assign mh_d[k] = WMH'((m_d[k] - 1'b1) >> 1);")],
            ["harness:6x6:boundary:20000"]),
     Mutant("rtl-nearest-margin", "RTL: nearest mode keeps the margin",
-           [(RTL, "assign edge_ok_d[k] = !neg || (CONSERVATIVE && h_ones && lsum[K]);",
-             "assign edge_ok_d[k] = !neg || (h_ones && lsum[K]);")],
+           [(RTL, "assign edge_fail_d[k] = CONSERVATIVE ? t_plus_mh[WP] : t3_q[k][WP-1];",
+             "assign edge_fail_d[k] = t_plus_mh[WP];")],
            ["harness:8x8n:boundary:20000"]),
     *[_class_rtl(k) for k in range(8)],
     Mutant("rtl-entry-plane-pos", "RTL: entry plane of positive axes from HI (A_i = HI_i - O_i)",
@@ -181,10 +180,14 @@ MUTANTS: list[Mutant] = [
             (RTL, "localparam int LATENCY = 6 + S2X;", "localparam int LATENCY = 7 + S2X;")],
            ["harness:6x6:boundary:2000"], build_error=r"LATENCY differs from the port contract"),
     Mutant("rtl-latency-minus-one", "RTL: the S4 register bypassed (results one cycle early)",
-           [(RTL, "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && (&edge_ok4_q), strict4};",
-             "    if (v3_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag3_q, ok3_q && (&edge_ok_d),\n"
-             "        TERNARY && oks3_q && (&edge_strict_d)};"),
-            (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      if (v3_q) wr_ptr_q <= wr_ptr_q + 1'b1;")],
+           [(RTL, "    if (v4_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag4_q, ok4_q && !(|edge_fail4_q), strict4};",
+             "    if (v3_q) fifo_q[wr_ptr_q[FIFO_AW-1:0]] <= {tag3_q, ok3_q && !(|edge_fail_d),\n"
+             "        TERNARY && oks3_q && !(|edge_sfail_d)};"),
+            (RTL, "      if (v4_q) wr_ptr_q <= wr_ptr_q + 1'b1;", "      if (v3_q) wr_ptr_q <= wr_ptr_q + 1'b1;"),
+            # out_valid_o's count too, or the answers would only be written
+            # a clock before they are offered (no change at the ports).
+            (RTL, "    if (v4_q && !give) occ_d =", "    if (v3_q && !give) occ_d ="),
+            (RTL, "    if (give && !v4_q) occ_d =", "    if (give && !v3_q) occ_d =")],
            ["harness:6x6:boundary:2000",
             "cocotb:tb/pluecker_intersector/test_pluecker_intersector.py::test_pluecker_intersector[c6_d6_cons]"
             "@throughput"]),
