@@ -478,18 +478,19 @@ module pluecker_intersector #(
   // For an integer T: 2*T + M >= 0 <=> T >= -M/2 <=> T + floor(M/2) >= 0,
   // and 2*T - MS >= 0 <=> T >= MS/2 <=> T - ceil(MS/2) >= 0 (S4).
   // -------------------------------------------------------------------------
-  localparam int WMS = WM + 1;  // MS < 2^(WM+1)
+  localparam int WMS = WM + 1;  // MS < 2^(WM+1), and MSH <= 2^WM: WMS bits
   localparam int WMH = WM - 1;  // MH < 2^(WM-1)
-  localparam int WMSH = WMS;  // MSH <= 2^WM
   logic [5:0][WM-1:0] m_d;
   logic [5:0][WMS:0] ms1_d;  // MS + 1
   logic [5:0][WMH-1:0] mh_d;
-  logic [5:0][WMSH-1:0] msh_d;
+  logic [5:0][WMS-1:0] msh_d;
 
   for (genvar k = 0; k < 6; k++) begin : g_margin
     localparam int J = pair_j(k);
     assign m_d[k] = WM'(m12_q[k]) + WM'(dd2_q[k]) + WM'(sb2_q[J]);
     assign mh_d[k] = m_d[k][WM-1:1];
+    // MS + 1 from the parts, beside M rather than from M's sum (two
+    // carry chains in series would lengthen this stage).
     assign ms1_d[k] = (WMS + 1)'(m12_q[k]) + (WMS + 1)'({dd2_q[k], 1'b0}) + (WMS + 1)'(dd2_q[k]) +
         (WMS + 1)'(sb2_q[J]) + 1'b1;
     assign msh_d[k] = ms1_d[k][WMS:1];
@@ -500,12 +501,12 @@ module pluecker_intersector #(
   // pipeline register, then pluecker_mul's partial-product sums); the first
   // registers the margins, the others only delay them.
   // -------------------------------------------------------------------------
-  localparam int SIDE_W = 6 * WMH + 6 * WMSH + 2;
+  localparam int SIDE_W = 6 * WMH + 6 * WMS + 2;
   wire [SIDE_W-1:0] side2_d = {mh_d, msh_d, ok2_q, oks2_q};
   wire [TAG_BITS-1:0] tag2x_q;
   wire [SIDE_W-1:0] side2x_q;
   wire [5:0][WMH-1:0] mh2x_q;
-  wire [5:0][WMSH-1:0] msh2x_q;
+  wire [5:0][WMS-1:0] msh2x_q;
   wire ok2x_q, oks2x_q;
 `ifdef ASSERT_ON
   logic [31:0] s2x_in_flight;  // valid bits in the S2x stages
@@ -556,7 +557,7 @@ module pluecker_intersector #(
   logic [TAG_BITS-1:0] tag3_q;
   logic [5:0][WP-1:0] t3_q;
   logic [5:0][WMH-1:0] mh3_q;
-  logic [5:0][WMSH-1:0] msh3_q;
+  logic [5:0][WMS-1:0] msh3_q;
   logic ok3_q, oks3_q;
 
   always_ff @(posedge clk_i) begin
