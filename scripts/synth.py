@@ -182,6 +182,22 @@ def parse_widths(text: str) -> list[tuple[int, int]]:
     return pairs
 
 
+def parse_seeds(text: str) -> list[int]:
+    """'N' -> seeds 1..N; 'a,b,...' (or spaces) -> those seeds, each at least 1, no repeats."""
+    items = text.replace(",", " ").split()
+    try:
+        values = [int(v) for v in items]
+    except ValueError:
+        raise ValueError(f"'{text}' is not a count N (seeds 1..N) or a list of seeds such as 2,3") from None
+    if not values or any(v < 1 for v in values):
+        raise ValueError(f"'{text}': seeds are numbers >= 1")
+    if len(set(values)) != len(values):
+        raise ValueError(f"'{text}' names a seed twice")
+    if len(items) == 1 and "," not in text:
+        return list(range(1, values[0] + 1))
+    return values
+
+
 def parse_local_widths(text: str) -> list[tuple[int, int, int]]:
     out = []
     for item in text.replace(" ", ",").split(","):
@@ -889,12 +905,12 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
     built = [d for d in designs if d.name in done]
     runs: dict[str, list] = {d.name: [] for d in built}
     if not args.no_pnr and built:
-        say(f"synth: nextpnr at speeds {args.speeds}, seeds 1..{args.seeds}, target {args.freq:g} MHz")
+        say(f"synth: nextpnr at speeds {args.speeds}, seeds {args.seeds_text}, target {args.freq:g} MHz")
         pnr_jobs, of_design = [], {}
         for d in built:
             base = Path(args.out) / d.name
             for speed in args.speed_list:
-                for seed in range(1, args.seeds + 1):
+                for seed in args.seed_list:
                     rundir = base / "pnr" / f"speed{speed}_seed{seed}"
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                            "netlist": base / "netlist.json", "top": d.top,
@@ -933,7 +949,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--mul-style", choices=lim["mul_styles"], default="auto", help="MUL_STYLE")
     p.add_argument("--pipeline", type=int, choices=range(lim["pipeline"][0], lim["pipeline"][1] + 1),
                    default=0, help="PIPELINE (the multipliers' extra register)")
-    p.add_argument("--seeds", type=int, default=3, help="seeds 1..N per speed grade")
+    p.add_argument("--seeds", default="3",
+                   help="N: seeds 1..N per speed grade; or a list of seeds, e.g. '2,3' (the summary then "
+                        "holds those seeds' runs alone)")
     p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
     p.add_argument("--router", choices=("router1", "router2"), default="router1",
@@ -981,7 +999,7 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     if args.unit == "fixed" and args.mul_dsp is not None:
         p.error("--mul-dsp is a parameter of the binary32 units (--unit float or smits)")
     if args.smoke:
-        args.seeds, args.speeds = 1, "8"
+        args.seeds, args.speeds = "1", "8"
     if args.out is None:
         args.out = str(ROOT / "out" / ("synth-smoke" if args.smoke else "synth"))
     try:
@@ -990,8 +1008,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error(f"--speeds: '{args.speeds}' is not a list of 6/7/8")
     if not args.speed_list or any(s not in (6, 7, 8) for s in args.speed_list):
         p.error(f"--speeds: '{args.speeds}' must list grades 6, 7 or 8")
-    if args.seeds < 1:
-        p.error("--seeds must be >= 1")
+    try:
+        args.seed_list = parse_seeds(args.seeds)
+    except ValueError as e:
+        p.error(f"--seeds: {e}")
+    args.seeds_text = (f"1..{args.seed_list[-1]}" if args.seed_list == list(range(1, len(args.seed_list) + 1))
+                       else ",".join(map(str, args.seed_list)))
     for flag in args.synth_flags:
         if not re.fullmatch(r"-[a-z][a-z0-9_]*", flag):
             p.error(f"--synth-flag: '{flag}' is not a synth_ecp5 option (one word such as -nolutram)")

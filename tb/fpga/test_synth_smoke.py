@@ -280,3 +280,23 @@ def test_harness_flip_flops(tmp_path):
     design = synth.Design("cascade_1x2_8x8_16x16", "ooc_cascade_wrapper", Path("ooc_cascade_wrapper.sv"),
                           "pluecker_cascade", {}, {})
     assert synth.harness_flip_flops(path, design) == 5
+
+
+def test_seed_list():
+    """--seeds N runs seeds 1..N; a list ('2,3', '2 3', '4,') runs exactly
+    those (say the seeds an earlier run lacks); bad lists are refused by
+    name (no tools)."""
+    assert synth.parse_seeds("3") == [1, 2, 3]
+    assert synth.parse_seeds("1") == [1]
+    assert synth.parse_seeds("2,3") == [2, 3]
+    assert synth.parse_seeds("5 2") == [5, 2]
+    assert synth.parse_seeds("4,") == [4]
+    for bad, why in (("0", ">= 1"), ("2,0", ">= 1"), ("x", "not a count"), ("2,2", "twice"), ("", ">= 1")):
+        with pytest.raises(ValueError, match=why):
+            synth.parse_seeds(bad)
+    args = synth.parse_args(["--seeds", "2,3", "--no-pnr"])
+    assert args.seed_list == [2, 3] and args.seeds_text == "2,3"
+    assert synth.parse_args(["--seeds", "2"]).seeds_text == "1..2"
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--seeds", "1,1", "--no-pnr"],
+                         capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2 and "--seeds: '1,1' names a seed twice" in res.stderr, res.stderr
