@@ -325,7 +325,7 @@ sim-local-bench: sim-local
 # file choosing the local unit sets it) runs synth-local instead.
 # Every Yosys run and every nextpnr run (configurations x speeds x seeds)
 # is a job (scripts/jobs.py): here, or on a Dask cluster with
-# DASK_SCHEDULER=host:port.
+# DASK_SCHEDULER=host:port. SEEDS: N (seeds 1..N) or a list such as 2,3.
 SEEDS        ?= 3
 SPEEDS       ?= 6 8
 FREQ         ?= 250
