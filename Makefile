@@ -384,7 +384,8 @@ endif
 #             stops once the target is met: 221.6 MHz at FREQ=220; it
 #             did not end at 247); the '5*2:8x8:16x16+8' chip, FREQ=175,
 #             rip-up, 176.0 MHz (median of 3, 16-17 min a seed, two at a
-#             time).
+#             time); '5*2:9x9:16x16+8' (fewer escalations), the same
+#             flow, 175.6 MHz (17-20 min a seed).
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
