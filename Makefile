@@ -372,9 +372,11 @@ endif
 #             16/16 chip (PIPELINE=2) its best median (FREQ=172 the
 #             CASCADE='4*2:8x8:16x16+9' chip its best, FREQ=178 the
 #             '5*2:8x8:16x16+8' one on seed 1, not on seed 2); the rip-up
-#             never ends at a target the placement cannot meet (215 on the
-#             16/16 chip with the placer's default timing weight;
-#             fpga/TIMING.md). Adding
+#             alone never ends at a target the placement cannot meet (215
+#             on the 16/16 chip with the placer's default timing weight;
+#             fpga/TIMING.md), so synth.py stops a run whose failing arcs
+#             have not fallen for 100 router iterations and names it failed
+#             (SYNTH_FLAGS=--ripup-patience=N; 0 waits forever). Adding
 #             --nextpnr-arg=--placer-heap-timingweight=30 to SYNTH_FLAGS
 #             gave the 16/16 chip 214.7 MHz at FREQ=215 with rip-up
 #             (median of 3 seeds) and the five-cascade chip's seed 2

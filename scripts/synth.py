@@ -18,6 +18,10 @@ Every Yosys run (one a configuration) and every nextpnr run (one a
 configuration x speed grade x seed) is a job of scripts/jobs.py: on this
 machine at most --jobs (max 2) at a time, or on a Dask distributed cluster
 when DASK_SCHEDULER=host:port is set, with a progress line per finished job.
+With --nextpnr-arg=--tmg-ripup (router2's timing-driven rip-up, which ends
+only once the target is met) a run whose failing arcs have not fallen for
+--ripup-patience router iterations (nextpnr.log, read as it grows) is
+stopped and named failed with its best count, instead of running forever.
 A failed job is named and the exit status is 1; the summaries of the other
 configurations are still written, and <out>/jobs_yosys.jsonl and
 jobs_nextpnr.jsonl keep every finished job's result.
@@ -63,6 +67,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
@@ -86,6 +91,7 @@ CAPACITY = {"MULT18X18D": 156, "TRELLIS_COMB": 83640, "TRELLIS_FF": 83640}
 DEVICE_FLAG, DEVICE = "--85k", "LFE5U-85F"
 PACKAGE = "CABGA381"
 MAX_PARALLEL = 2  # Yosys or nextpnr runs at once on this machine (2 cores)
+RIPUP_PATIENCE = 100  # router iterations without progress before a --tmg-ripup run is stopped
 CELL_KEYS = ("LUT4", "CCU2C", "TRELLIS_FF", "MULT18X18D", "PFUMX", "L6MUX21",
              "DP16KD", "TRELLIS_DPR16X4")
 
@@ -420,22 +426,127 @@ def parse_report(report_path: Path, types: dict[str, str], base: Path) -> dict:
     return {"fmax_mhz": fmax, "utilisation": util, "critical_path": worst}
 
 
+# router2's progress line, one per routing iteration (nextpnr.log)
+_ROUTER2_ITER = re.compile(r"\biter=(\d+) wires=\d+ overused=(\d+) overuse=\d+ tmgfail=(\d+)")
+
+
+class RipupWatch:
+    """router2's timing-driven rip-up (--tmg-ripup) ends only once every arc
+    meets the target, so at an unreachable target it never ends: its
+    failing-arc count settles, or swings between a few values, forever.
+    Fed nextpnr.log as it grows, the watch stalls once the best (overused
+    wires, failing arcs) pair seen has not improved for `patience`
+    iterations. (On the chips of fpga/TIMING.md every run that ended went at
+    most 33 iterations without a new best; those that did not end, 200 to
+    965 before they were stopped.)"""
+
+    def __init__(self, patience: int):
+        if patience < 1:
+            raise ValueError(f"rip-up patience must be at least 1 iteration, not {patience}")
+        self.patience = patience
+        self.best: tuple[int, int] | None = None  # (overused wires, failing arcs)
+        self.best_iter = 0
+        self.iteration = 0
+        self._partial = ""
+
+    def feed(self, text: str) -> None:
+        lines = (self._partial + text).split("\n")
+        self._partial = lines.pop()  # an unfinished last line waits for the rest
+        for line in lines:
+            m = _ROUTER2_ITER.search(line)
+            if not m:
+                continue
+            it, overused, tmgfail = map(int, m.groups())
+            self.iteration = it
+            if self.best is None or (overused, tmgfail) < self.best:
+                self.best, self.best_iter = (overused, tmgfail), it
+
+    @property
+    def stalled(self) -> bool:
+        return self.best is not None and self.iteration - self.best_iter >= self.patience
+
+    def message(self, freq: float) -> str:
+        overused, tmgfail = self.best or (0, 0)
+        return (f"rip-up stopped at router iteration {self.iteration}: no better than {tmgfail} arcs failing "
+                f"the {freq:g} MHz target ({overused} overused wires; iteration {self.best_iter}) in "
+                f"{self.patience} iterations, so the target is likely out of reach: lower --freq (FREQ=), "
+                f"or --ripup-patience 0 to wait for it")
+
+
+def _stop(proc: subprocess.Popen) -> None:
+    """Stop nextpnr and whatever it started (its own process group)."""
+    for sig, wait in ((signal.SIGTERM, 20), (signal.SIGKILL, 60)):
+        try:
+            os.killpg(proc.pid, sig)
+        except ProcessLookupError:
+            return
+        try:
+            proc.wait(timeout=wait)
+            return
+        except subprocess.TimeoutExpired:
+            continue
+
+
+def run_nextpnr(cmd: list[str], rundir: Path, watch: RipupWatch | None,
+                poll_s: float = 5.0) -> tuple[int | None, str]:
+    """nextpnr in rundir; with a watch, nextpnr.log is read as it grows and
+    the run is stopped once the rip-up stalls (return code None). Returns
+    (return code, the last line of its error output)."""
+    log = rundir / "nextpnr.log"
+    if log.exists():
+        log.unlink()
+    with open(rundir / "nextpnr.err", "w+") as err:
+        proc = subprocess.Popen(cmd, cwd=rundir, stdout=subprocess.DEVNULL, stderr=err, start_new_session=True)
+        offset = 0
+        try:
+            while True:
+                try:
+                    rc = proc.wait(timeout=poll_s)
+                    break
+                except subprocess.TimeoutExpired:
+                    pass
+                if watch is None or not log.exists():
+                    continue
+                with open(log, errors="replace") as f:
+                    f.seek(offset)
+                    text = f.read()
+                    offset = f.tell()
+                watch.feed(text)
+                if watch.stalled:
+                    _stop(proc)
+                    return None, ""
+        except BaseException:
+            _stop(proc)
+            raise
+        err.seek(0)
+        lines = err.read().strip().splitlines()
+    return rc, (lines or ["no output"])[-1]
+
+
 def run_pnr(job: dict) -> dict:
     """Job: one nextpnr run (job: speed, seed, rundir, base, netlist, top,
-    cmd); its Fmax, utilisation and critical path, or its error."""
+    cmd, freq, ripup_patience: 0, or the iterations without progress after
+    which a --tmg-ripup run is stopped); its Fmax, utilisation and critical
+    path, or its error."""
     rundir: Path = job["rundir"]
     rundir.mkdir(parents=True, exist_ok=True)
     report = rundir / "report.json"
     if report.exists():
         report.unlink()
+    patience = job.get("ripup_patience", 0)
+    watch = RipupWatch(patience) if patience else None
     t0 = time.monotonic()
-    res = subprocess.run(job["cmd"], capture_output=True, text=True, cwd=rundir)
+    rc, last_err = run_nextpnr(job["cmd"], rundir, watch)
     seconds = round(time.monotonic() - t0, 1)
     out = {"speed": job["speed"], "seed": job["seed"], "seconds": seconds,
            "report": str(report.relative_to(job["base"]))}
-    if res.returncode != 0 or not report.exists():
-        out["error"] = (f"nextpnr exit {res.returncode}: "
-                        + (res.stderr.strip().splitlines() or ["no output"])[-1])
+    if rc is None:
+        out["error"] = watch.message(job["freq"])
+        out["ripup_stalled"] = {"iteration": watch.iteration, "best_iteration": watch.best_iter,
+                                "overused": watch.best[0], "tmgfail": watch.best[1]}
+        return out
+    if rc != 0 or not report.exists():
+        out["error"] = f"nextpnr exit {rc}: {last_err}"
         return out
     out.update(parse_report(report, cell_types(job["netlist"], job["top"]), job["base"]))
     clocks = out["fmax_mhz"]
@@ -596,6 +707,7 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "placer": args.placer,
         "synth_flags": args.synth_flags,
         "nextpnr_args": args.nextpnr_args,
+        **({"ripup_patience": args.ripup_patience} if "--tmg-ripup" in args.nextpnr_args else {}),
         "floorplan": args.floorplan if "floorplan" in ys else "none",
         **({"dsp_sites": ys["floorplan"]} if "floorplan" in ys else {}),  # per unit: first, last site
         "tools": tools,
@@ -913,7 +1025,8 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
                 for seed in args.seed_list:
                     rundir = base / "pnr" / f"speed{speed}_seed{seed}"
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
-                           "netlist": base / "netlist.json", "top": d.top,
+                           "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
+                           "ripup_patience": args.ripup_patience if "--tmg-ripup" in args.nextpnr_args else 0,
                            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
                                                args.router, args.placer, tuple(args.nextpnr_args))}
                     name = f"{d.name} speed{speed} seed{seed}"
@@ -972,6 +1085,10 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "flip-flops) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")
     p.add_argument("--nextpnr-arg", dest="nextpnr_args", action="append", default=[], metavar="OPT",
                    help="one more nextpnr option, repeatable, e.g. --nextpnr-arg=--placer-heap-timingweight=20")
+    p.add_argument("--ripup-patience", type=int, default=RIPUP_PATIENCE, metavar="N",
+                   help="with --nextpnr-arg=--tmg-ripup: stop a run whose rip-up has not lowered its failing "
+                        "arcs for N router iterations (the target is then out of reach: router2 never ends "
+                        "there) and name it failed; 0: never stop (default %(default)s)")
     p.add_argument("--jobs", type=int, default=2,
                    help=f"Yosys or nextpnr runs at a time on this machine (max {MAX_PARALLEL})")
     p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")
@@ -1014,6 +1131,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error(f"--seeds: {e}")
     args.seeds_text = (f"1..{args.seed_list[-1]}" if args.seed_list == list(range(1, len(args.seed_list) + 1))
                        else ",".join(map(str, args.seed_list)))
+    if args.ripup_patience < 0:
+        p.error(f"--ripup-patience: {args.ripup_patience} is not a number of iterations (0 = never stop)")
     for flag in args.synth_flags:
         if not re.fullmatch(r"-[a-z][a-z0-9_]*", flag):
             p.error(f"--synth-flag: '{flag}' is not a synth_ecp5 option (one word such as -nolutram)")

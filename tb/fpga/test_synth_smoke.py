@@ -300,3 +300,93 @@ def test_seed_list():
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--seeds", "1,1", "--no-pnr"],
                          capture_output=True, text=True, timeout=120)
     assert res.returncode == 2 and "--seeds: '1,1' names a seed twice" in res.stderr, res.stderr
+
+
+def _router2_lines(pairs, first=1):
+    """router2 progress lines for (overused, tmgfail) pairs, as nextpnr.log has them."""
+    return "".join(f"Info:     iter={first + i} wires=353370 overused={o} overuse={o} tmgfail={t} archfail=NA\n"
+                   for i, (o, t) in enumerate(pairs))
+
+
+def test_ripup_watch():
+    """The rip-up watch stalls after `patience` iterations without a better
+    (overused, failing arcs) pair, not before; a swing between two counts
+    (106 / 148, as a 16/16 chip at 247 MHz did for 1,000 iterations) is a
+    stall; a run that keeps improving or converges late is not; lines
+    split across reads are joined; placer lines (iter=, no tmgfail) are not
+    router iterations (no tools)."""
+    w = synth.RipupWatch(100)
+    w.feed("Info: iter=503 steplen=1.95 a=253.8 penalty=[98.09]\n")
+    assert w.best is None and not w.stalled
+    w.feed(_router2_lines([(20000 - 1000 * i, 0) for i in range(20)]))  # congestion falls
+    w.feed(_router2_lines([(0, 106), (0, 148)] * 49, first=21))
+    assert w.best == (0, 106) and w.best_iter == 21 and not w.stalled, (w.iteration, w.best_iter)
+    text = _router2_lines([(0, 148), (0, 106), (0, 148)], first=119)
+    w.feed(text[:30])  # half a line: not counted yet
+    assert w.iteration == 118
+    w.feed(text[30:])
+    assert w.iteration == 121 and w.stalled  # 100 iterations since the best, iteration 21
+    assert "no better than 106 arcs failing the 247 MHz target" in w.message(247.0)
+    # converging after 33 iterations without progress (the longest of the
+    # chips that ended) and slow improvement are not stalls
+    w = synth.RipupWatch(100)
+    w.feed(_router2_lines([(0, 40)] + [(0, 41)] * 33 + [(0, 0)]))
+    assert not w.stalled and w.best == (0, 0)
+    w = synth.RipupWatch(100)
+    w.feed(_router2_lines([(0, 500 - i) for i in range(400)]))
+    assert not w.stalled
+    with pytest.raises(ValueError, match="at least 1"):
+        synth.RipupWatch(0)
+    assert synth.parse_args(["--no-pnr"]).ripup_patience == synth.RIPUP_PATIENCE
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--ripup-patience", "-1", "--no-pnr"],
+                         capture_output=True, text=True, timeout=120)
+    assert res.returncode == 2 and "--ripup-patience" in res.stderr, res.stderr
+
+
+FAKE_NEXTPNR = '''
+import os, sys, time
+log = sys.argv[sys.argv.index("-l") + 1]
+open("fake.pid", "w").write(str(os.getpid()))
+mode = sys.argv[-1]
+with open(log, "w") as f:
+    for i in range(1, 100000):
+        if mode == "converge":
+            t = 50 if i < 40 else 0
+        else:
+            t = 106 if i % 2 else 148
+        f.write(f"Info:     iter={i} wires=353370 overused=0 overuse=0 tmgfail={t} archfail=NA\\n")
+        f.flush()
+        if mode == "converge" and t == 0:
+            print("ERROR: fake nextpnr wrote no report", file=sys.stderr)
+            sys.exit(3)
+        time.sleep(0.01)
+'''
+
+
+def _fake_job(tmp_path, mode, patience):
+    fake = tmp_path / "fake_nextpnr.py"
+    fake.write_text(FAKE_NEXTPNR)
+    rundir = tmp_path / mode
+    return {"speed": 8, "seed": 1, "rundir": rundir, "base": tmp_path, "netlist": tmp_path / "netlist.json",
+            "top": "ooc_array_wrapper", "freq": 247.0, "ripup_patience": patience,
+            "cmd": [sys.executable, str(fake), "-l", "nextpnr.log", mode]}, rundir
+
+
+def test_ripup_stall_stops_nextpnr(tmp_path):
+    """run_pnr stops a nextpnr whose rip-up swings forever (a stand-in
+    process writing router2's progress lines) and names the run failed with
+    its best count; a run that converges is left to end, and its own error
+    is reported (no tools)."""
+    import os
+    job, rundir = _fake_job(tmp_path, "swing", 20)
+    r = synth.run_pnr(job)
+    assert "rip-up stopped" in r["error"] and "no better than 106 arcs" in r["error"], r
+    assert r["ripup_stalled"]["tmgfail"] == 106 and r["ripup_stalled"]["iteration"] >= 21, r
+    pid = int((rundir / "fake.pid").read_text())
+    with pytest.raises(ProcessLookupError):
+        os.kill(pid, 0)
+    job, rundir = _fake_job(tmp_path, "converge", 20)  # 38 iterations without progress, then done
+    job["ripup_patience"] = 100
+    r = synth.run_pnr(job)
+    assert r["error"] == "nextpnr exit 3: ERROR: fake nextpnr wrote no report", r
+    assert "ripup_stalled" not in r
