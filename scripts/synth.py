@@ -67,7 +67,6 @@ import json
 import os
 import re
 import shutil
-import signal
 import statistics
 import subprocess
 import sys
@@ -474,12 +473,12 @@ class RipupWatch:
 
 
 def _stop(proc: subprocess.Popen) -> None:
-    """Stop nextpnr and whatever it started (its own process group)."""
-    for sig, wait in ((signal.SIGTERM, 20), (signal.SIGKILL, 60)):
-        try:
-            os.killpg(proc.pid, sig)
-        except ProcessLookupError:
+    """Stop nextpnr: SIGTERM, then SIGKILL if it lingers. (It stays in
+    synth.py's process group, so that Ctrl-C reaches it as before.)"""
+    for stop, wait in ((proc.terminate, 20), (proc.kill, 60)):
+        if proc.poll() is not None:
             return
+        stop()
         try:
             proc.wait(timeout=wait)
             return
@@ -496,7 +495,7 @@ def run_nextpnr(cmd: list[str], rundir: Path, watch: RipupWatch | None,
     if log.exists():
         log.unlink()
     with open(rundir / "nextpnr.err", "w+") as err:
-        proc = subprocess.Popen(cmd, cwd=rundir, stdout=subprocess.DEVNULL, stderr=err, start_new_session=True)
+        proc = subprocess.Popen(cmd, cwd=rundir, stdout=subprocess.DEVNULL, stderr=err)
         offset = 0
         try:
             while True:
@@ -1081,8 +1080,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "scripts/floorplan.py), so its fabric can sit next to all of them; adds _fp to the "
                         "output folder's name")
     p.add_argument("--synth-flag", dest="synth_flags", action="append", default=[], metavar="FLAG",
-                   help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (FIFOs in "
-                        "flip-flops) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")
+                   help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (the "
+                        "output FIFOs in DP16KD block RAM instead of LUT RAM) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")
     p.add_argument("--nextpnr-arg", dest="nextpnr_args", action="append", default=[], metavar="OPT",
                    help="one more nextpnr option, repeatable, e.g. --nextpnr-arg=--placer-heap-timingweight=20")
     p.add_argument("--ripup-patience", type=int, default=RIPUP_PATIENCE, metavar="N",
