@@ -387,7 +387,11 @@ endif
 #             did not end at 247); the '5*2:8x8:16x16+8' chip, FREQ=175,
 #             rip-up, 176.0 MHz (median of 3, 16-17 min a seed, two at a
 #             time); '5*2:9x9:16x16+8' (fewer escalations), the same
-#             flow, 175.6 MHz (17-20 min a seed).
+#             flow, 175.6 MHz (17-20 min a seed). Chips with fabric
+#             units: SYNTH_FLAGS=--synth-flag=-nolutram (output FIFOs in
+#             DP16KD block RAM) gave CHIP=0x20 COORD_BITS=8 DIR_BITS=8
+#             PIPELINE=2 175.6 MHz and CHIP=13x26 COORD_BITS=6 DIR_BITS=6
+#             PIPELINE=2 173.0 MHz (6.75 G; seed 1, 20-22 min each).
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
