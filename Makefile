@@ -390,8 +390,9 @@ endif
 #             flow, 175.6 MHz (17-20 min a seed). Chips with fabric
 #             units: SYNTH_FLAGS=--synth-flag=-nolutram (output FIFOs in
 #             DP16KD block RAM) gave CHIP=0x20 COORD_BITS=8 DIR_BITS=8
-#             PIPELINE=2 175.6 MHz and CHIP=13x26 COORD_BITS=6 DIR_BITS=6
-#             PIPELINE=2 173.0 MHz (6.75 G; seed 1, 20-22 min each).
+#             PIPELINE=2 175.6 MHz (184.3 with rip-up at FREQ=185) and
+#             CHIP=13x26 COORD_BITS=6 DIR_BITS=6 PIPELINE=2 173.0 MHz
+#             (6.75 G; seed 1, 20-26 min each).
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
