@@ -522,6 +522,13 @@ def run_nextpnr(cmd: list[str], rundir: Path, watch: RipupWatch | None,
     return rc, (lines or ["no output"])[-1]
 
 
+def ripup_patience(args) -> int | None:
+    """The rip-up patience of this flow's nextpnr runs: None without
+    --nextpnr-arg=--tmg-ripup (nothing to watch), else --ripup-patience
+    (0: never stop)."""
+    return args.ripup_patience if "--tmg-ripup" in args.nextpnr_args else None
+
+
 def run_pnr(job: dict) -> dict:
     """Job: one nextpnr run (job: speed, seed, rundir, base, netlist, top,
     cmd, freq, ripup_patience: 0, or the iterations without progress after
@@ -706,7 +713,7 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "placer": args.placer,
         "synth_flags": args.synth_flags,
         "nextpnr_args": args.nextpnr_args,
-        **({"ripup_patience": args.ripup_patience} if "--tmg-ripup" in args.nextpnr_args else {}),
+        **({"ripup_patience": ripup_patience(args)} if ripup_patience(args) is not None else {}),
         "floorplan": args.floorplan if "floorplan" in ys else "none",
         **({"dsp_sites": ys["floorplan"]} if "floorplan" in ys else {}),  # per unit: first, last site
         "tools": tools,
@@ -1025,7 +1032,7 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
                     rundir = base / "pnr" / f"speed{speed}_seed{seed}"
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                            "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
-                           "ripup_patience": args.ripup_patience if "--tmg-ripup" in args.nextpnr_args else 0,
+                           "ripup_patience": ripup_patience(args) or 0,
                            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
                                                args.router, args.placer, tuple(args.nextpnr_args))}
                     name = f"{d.name} speed{speed} seed{seed}"

@@ -14,6 +14,7 @@ the project. Deselect it for quick local iterations instead
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -377,7 +378,6 @@ def test_ripup_stall_stops_nextpnr(tmp_path):
     process writing router2's progress lines) and names the run failed with
     its best count; a run that converges is left to end, and its own error
     is reported (no tools)."""
-    import os
     job, rundir = _fake_job(tmp_path, "swing", 20)
     r = synth.run_pnr(job)
     assert "rip-up stopped" in r["error"] and "no better than 106 arcs" in r["error"], r
@@ -385,8 +385,7 @@ def test_ripup_stall_stops_nextpnr(tmp_path):
     pid = int((rundir / "fake.pid").read_text())
     with pytest.raises(ProcessLookupError):
         os.kill(pid, 0)
-    job, rundir = _fake_job(tmp_path, "converge", 20)  # 38 iterations without progress, then done
-    job["ripup_patience"] = 100
+    job, rundir = _fake_job(tmp_path, "converge", 100)  # 38 iterations without progress, then done
     r = synth.run_pnr(job)
     assert r["error"] == "nextpnr exit 3: ERROR: fake nextpnr wrote no report", r
     assert "ripup_stalled" not in r
