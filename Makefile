@@ -364,35 +364,18 @@ endif
 #             router1 did not converge on the 13x0 chip in 108 minutes,
 #             router2 routed it in 17). PLACER: heap (analytical, the
 #             default) or static (electrostatic: places the chips heap
-#             stalls on, at a lower Fmax so far; fpga/TIMING.md). The best
-#             measured chips use PIPELINE=2 (README, fpga/TIMING.md); more
+#             stalls on, at a lower Fmax so far; fpga/TIMING.md). More
 #             nextpnr options: SYNTH_FLAGS=--nextpnr-arg=--OPTION=VALUE,
-#             synth_ecp5 options: SYNTH_FLAGS=--synth-flag=-nolutram.
-#             SPEEDS=8 FREQ=210 SYNTH_FLAGS=--nextpnr-arg=--tmg-ripup gave the 13x0
-#             16/16 chip (PIPELINE=2) its best median (FREQ=172 the
-#             CASCADE='4*2:8x8:16x16+9' chip its best, FREQ=178 the
-#             '5*2:8x8:16x16+8' one on seed 1, not on seed 2); the rip-up
-#             alone never ends at a target the placement cannot meet (215
-#             on the 16/16 chip with the placer's default timing weight;
-#             fpga/TIMING.md), so synth.py stops a run whose failing arcs
-#             have not fallen for 100 router iterations and names it failed
-#             (SYNTH_FLAGS=--ripup-patience=N; 0 waits forever). Adding
-#             --nextpnr-arg=--placer-heap-timingweight=30 to SYNTH_FLAGS
-#             gave the 16/16 chip 214.7 MHz at FREQ=215 with rip-up
-#             (median of 3 seeds) and the five-cascade chip's seed 2
-#             175.7 MHz; it slows the mixed 6/6 chip (fpga/TIMING.md).
-#             With it on the RTL of 2026-12-05: the 16/16 chip, FREQ=235,
-#             rip-up, 235.2 MHz (median of 3, 4-6 min a seed; the rip-up
-#             stops once the target is met: 221.6 MHz at FREQ=220; it
-#             did not end at 247); the '5*2:8x8:16x16+8' chip, FREQ=175,
-#             rip-up, 176.0 MHz (median of 3, 16-17 min a seed, two at a
-#             time); '5*2:9x9:16x16+8' (fewer escalations), the same
-#             flow, 175.6 MHz (17-20 min a seed). Chips with fabric
-#             units: SYNTH_FLAGS=--synth-flag=-nolutram (output FIFOs in
-#             DP16KD block RAM) gave CHIP=0x20 COORD_BITS=8 DIR_BITS=8
-#             PIPELINE=2 175.6 MHz (184.3 with rip-up at FREQ=185) and
-#             CHIP=13x26 COORD_BITS=6 DIR_BITS=6 PIPELINE=2 173.0 MHz
-#             (6.75 G; seed 1, 20-26 min each).
+#             synth_ecp5 options: SYNTH_FLAGS=--synth-flag=-nolutram
+#             (output FIFOs in DP16KD block RAM: chips with fabric units).
+#             With SYNTH_FLAGS=--nextpnr-arg=--tmg-ripup the router rips up
+#             until every arc meets FREQ, so the Fmax is the target: raise
+#             FREQ until the run stops (a rip-up that cannot end is stopped
+#             once its failing arcs have not fallen for 100 router
+#             iterations and named failed; SYNTH_FLAGS=--ripup-patience=N,
+#             0 waits forever). The best recipe measured for each chip, its
+#             Fmax and run time (4 to 26 minutes a seed): README, "Where
+#             the whole chips stand"; every chip run so far: fpga/CHIPS.md.
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
