@@ -369,7 +369,7 @@ endif
 #             synth_ecp5 options: SYNTH_FLAGS=--synth-flag=-nolutram
 #             (output FIFOs in DP16KD block RAM: chips with fabric units).
 #             With SYNTH_FLAGS=--nextpnr-arg=--tmg-ripup the router rips up
-#             until every arc meets FREQ, so the Fmax is the target: raise
+#             until every arc meets FREQ, so the Fmax is about FREQ: raise
 #             FREQ until the run stops (a rip-up that cannot end is stopped
 #             once its failing arcs have not fallen for 100 router
 #             iterations and named failed; SYNTH_FLAGS=--ripup-patience=N,
