@@ -14,7 +14,8 @@
 // traversal of a ray packet) and matches answers by lane and tag.
 //
 // Units. Lanes 0..N_DSP-1 use MUL_STYLE "dsp" (on ECP5 twelve MULT18X18D a
-// unit up to 17/17 bits), lanes N_DSP..N-1 MUL_STYLE "lut" (multipliers in
+// unit up to 17/17 bits; six at 6/6 with PIPELINE = 2, two products a
+// block, rtl/pluecker_mul_pair.sv), lanes N_DSP..N-1 MUL_STYLE "lut" (multipliers in
 // fabric, up to 17/17 bits), so one chip can fill its DSP blocks and its
 // LUTs at once: a mixed array. Every unit has the same COORD_BITS,
 // DIR_BITS, TAG_BITS, CONSERVATIVE and PIPELINE, hence one query encoding;

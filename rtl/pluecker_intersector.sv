@@ -44,7 +44,9 @@
 //   S2  12 multipliers B_j*D_i, A_i*D_j (pluecker_mul: on ECP5 a MULT18X18D
 //       whose input registers are the S1 registers of the operands and whose
 //       output register is the S2 register; or, by MUL_STYLE, the fabric
-//       multiplier pluecker_mul_lut with the same two register stages); in parallel |A_i| + |B_j| (in
+//       multiplier pluecker_mul_lut with the same two register stages; at
+//       6/6 with "dsp" and PIPELINE = 2 one MULT18X18D per difference does
+//       both its products, pluecker_mul_pair); in parallel |A_i| + |B_j| (in
 //       ones' complement form), origin test B_i >= 0, end test
 //   S2x PIPELINE + MUL_ADD stages: PIPELINE (0..2) for the multipliers'
 //       extra registers (1: the MULT18X18D pipeline register, in fabric the
@@ -204,7 +206,8 @@ module pluecker_intersector #(
   localparam int MUL_ADD = ((WA > DSP_OPERAND_BITS) ? 1 : 0) + ((WDS > DSP_OPERAND_BITS) ? 1 : 0);
 
   // Multiplier style. On the LFE5U-85F (156 MULT18X18D, 83,640 LUT4 slots)
-  // twelve DSP multipliers bound a chip to 13 units at any width; fabric
+  // twelve DSP multipliers bound a chip to 13 units at any width (26 at 6/6
+  // with PIPELINE = 2, MUL_PAIR below); fabric
   // multipliers make a unit LUT-bound: more units, each slower. Measured
   // (scripts/synth.py, 1 seed, speed 6, units x Fmax): 6/6 55 x 128 MHz
   // against 13 x 222 MHz, 8/8 38 x 133 against 13 x 204, 10/10 28 x 96
@@ -217,6 +220,16 @@ module pluecker_intersector #(
   if (!LUT_WIDTH_OK) begin : g_bad_lut_width
     $error("pluecker_intersector: MUL_STYLE \"lut\" supports COORD_BITS and DIR_BITS up to 17");
   end
+
+  // Paired products: with DSP multipliers, PIPELINE = 2 and
+  // C + 2 D <= DSP_OPERAND_BITS (6/6 bits) each MULT18X18D does the two
+  // products of one difference (A_i by D_j and D_k, B_j by D_i and D_k;
+  // rtl/pluecker_mul_pair.sv): six blocks a unit instead of twelve, same
+  // LATENCY.
+  localparam bit MUL_PAIR = !MUL_LUT && PIPELINE == 2 && C + 2 * D <= DSP_OPERAND_BITS;
+  // MULT18X18D of one unit (the port contract's mult18x18d).
+  localparam int N_MULT18X18D = MUL_LUT ? 0 : MUL_PAIR ? 6 : 12 * (1 + ((WA > DSP_OPERAND_BITS) ? 1 : 0)) *
+      (1 + ((WDS > DSP_OPERAND_BITS) ? 1 : 0));
 
   // S2x stages between S2 and S3: the multipliers' pipeline register and
   // their adder stages.
@@ -253,6 +266,9 @@ module pluecker_intersector #(
       end
       if (FIFO_DEPTH != pluecker_contract_pkg::contract_fifo_depth(CONTRACT_CLASS)) begin : g_bad_fifo_depth
         $error("pluecker_intersector: FIFO_DEPTH differs from the port contract (pluecker_contract_pkg)");
+      end
+      if (N_MULT18X18D != pluecker_contract_pkg::contract_mult18x18d(CONTRACT_CLASS)) begin : g_bad_mult18x18d
+        $error("pluecker_intersector: the MULT18X18D count differs from the port contract (pluecker_contract_pkg)");
       end
     end
   end
@@ -433,13 +449,31 @@ module pluecker_intersector #(
     assign b2_d[i] = !sb1_q[i] && (|mb1_q[i][WMAG-1:1]);
   end
 
+  if (MUL_PAIR) begin : g_pair
+    // Pair k = 2i and 2i + 1 is (i, i+1) and (i, i+2): A_i times D_(i+1)
+    // and D_(i+2) in one block; B_j is B_J of pairs 2(j+2)+0 (times
+    // D_(j+2)) and 2(j+1)+1 (times D_(j+1)), indices mod 3.
+    for (genvar i = 0; i < 3; i++) begin : g_axis
+      localparam int I1 = (i + 1) % 3;
+      localparam int I2 = (i + 2) % 3;
+      pluecker_mul_pair #(.WA(WA), .WU(D)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[i]), .b0_i(dir0_q[I1]), .b1_i(dir0_q[I2]),
+          .p0_o(pa2_q[2*i]), .p1_o(pa2_q[2*i+1]));
+      pluecker_mul_pair #(.WA(WA), .WU(D)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[i]), .b0_i(dir0_q[I2]), .b1_i(dir0_q[I1]),
+          .p0_o(pb2_q[2*I2]), .p1_o(pb2_q[2*I1+1]));
+    end
+  end
+
   for (genvar k = 0; k < 6; k++) begin : g_mul
     localparam int I = pair_i(k);
     localparam int J = pair_j(k);
     // Operands from the S0 registers (a_d, b_d, dir0_q), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
-    // Same ports and latency in both styles.
-    if (MUL_LUT) begin : g_lut
+    // Same ports and latency in every style.
+    if (MUL_PAIR) begin : g_paired
+      // The products come from g_pair above.
+    end else if (MUL_LUT) begin : g_lut
       pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_b (
           .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb2_q[k]));
       pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_a (

@@ -11,8 +11,9 @@ sites in a snake order over the device's three DSP rows (left to right,
 right to left, left to right), and units of different kinds (e.g. the
 wide units of cascades and plain units) are spread evenly over the rows.
 
-A unit is the hierarchy above the intersector's product generate block
-(`<unit>.g_mul[i]...`); a MULT18X18D elsewhere is refused by name.
+A unit is the hierarchy above the intersector's product generate blocks
+(`<unit>.g_mul[i]...`, or `<unit>.g_pair...` where one block does two
+products); a MULT18X18D elsewhere is refused by name.
 """
 from __future__ import annotations
 
@@ -49,16 +50,29 @@ def _natural(s: str) -> list:
     return [int(t) if t.isdigit() else t for t in re.split(r"(\d+)", s)]
 
 
+# The intersector's product generate blocks: one MULT18X18D a product
+# (g_mul[k]) or two products a block (g_pair, rtl/pluecker_mul_pair.sv).
+_PRODUCT_BLOCK = re.compile(r"\.g_(?:mul\[|pair\.)")
+
+
+def unit_of(name: str) -> str:
+    """The unit of a MULT18X18D cell: its name up to the last product
+    block."""
+    m = None
+    for m in _PRODUCT_BLOCK.finditer(name):
+        pass
+    if m is None or m.start() <= 0:
+        raise FloorplanError(f"MULT18X18D '{name}' is not in an intersector's product block "
+                             "('<unit>.g_mul[i]' or '<unit>.g_pair'): no unit to place it with")
+    return name[:m.start()]
+
+
 def unit_groups(names: list[str]) -> dict[str, list[str]]:
     """MULT18X18D cell names grouped by unit (the hierarchy above
-    '.g_mul['), each group in natural order."""
+    '.g_mul[' or '.g_pair.'), each group in natural order."""
     groups: dict[str, list[str]] = defaultdict(list)
     for n in names:
-        i = n.rfind(".g_mul[")
-        if i <= 0:
-            raise FloorplanError(f"MULT18X18D '{n}' is not in an intersector's product block "
-                                 "('<unit>.g_mul[i]'): no unit to place it with")
-        groups[n[:i]].append(n)
+        groups[unit_of(n)].append(n)
     return {g: sorted(cells, key=_natural) for g, cells in sorted(groups.items(), key=lambda kv: _natural(kv[0]))}
 
 
@@ -101,6 +115,6 @@ def pin_units(netlist: Path, top: str) -> dict[str, list[str]]:
         json.dump(data, f)
     spans: dict[str, list[str]] = {}
     for n, site in sites.items():
-        g = n[:n.rfind(".g_mul[")]
+        g = unit_of(n)
         spans.setdefault(g, [site, site])[1] = site
     return spans

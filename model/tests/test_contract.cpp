@@ -74,6 +74,16 @@ TEST(Contract, MultiplierStyles) {
     EXPECT_FALSE(contract(9, 10).fabric_multipliers());
     EXPECT_FALSE(contract(6, 6, MulStyle::Dsp).fabric_multipliers());
     EXPECT_EQ(contract(6, 6, MulStyle::Dsp).dsp_blocks(), 12);
+    // Paired products (rtl/pluecker_mul_pair.sv): DSP, PIPELINE 2 and
+    // C + 2 D <= 18 only, i.e. 6/6; same latency as unpaired.
+    EXPECT_TRUE(contract(6, 6, MulStyle::Dsp, 2).paired_products());
+    EXPECT_EQ(contract(6, 6, MulStyle::Dsp, 2).dsp_blocks(), 6);
+    EXPECT_EQ(contract(6, 6, MulStyle::Dsp, 2).latency(), contract(7, 7, MulStyle::Dsp, 2).latency());
+    EXPECT_FALSE(contract(6, 6, MulStyle::Dsp, 1).paired_products());
+    EXPECT_FALSE(contract(6, 6, MulStyle::Auto, 2).paired_products());  // fabric
+    EXPECT_FALSE(contract(6, 6, MulStyle::Lut, 2).paired_products());
+    EXPECT_EQ(contract(7, 6, MulStyle::Dsp, 2).dsp_blocks(), 12);
+    EXPECT_EQ(contract(6, 7, MulStyle::Dsp, 2).dsp_blocks(), 12);
     EXPECT_TRUE(contract(17, 17, MulStyle::Lut).fabric_multipliers());
     EXPECT_EQ(contract(17, 17, MulStyle::Lut).latency(), 6);
     // The style never changes the latency.
@@ -288,8 +298,10 @@ TEST(Contract, ClassesPartitionEveryConfiguration) {
                 }
     // auto and dsp: every width pair; lut: both widths up to 17; three PIPELINE values.
     EXPECT_EQ(valid, std::size_t{3} * (19 * 19 * 2 + 12 * 12));
-    // Widths split at 10 (auto's fabric threshold) and 18 (DSP operand split).
-    EXPECT_EQ(classes.size(), std::size_t{3} * (9 + 9 + 4));
+    // Widths split at 7 (paired products at 6/6), 10 (auto's fabric
+    // threshold) and 18 (DSP operand split): auto and dsp 4 x 4 runs, lut
+    // 3 x 3, for each PIPELINE.
+    EXPECT_EQ(classes.size(), std::size_t{3} * (16 + 16 + 9));
 }
 
 // The AXI4-Stream wrapper's tdata: the payload ports back to back from bit

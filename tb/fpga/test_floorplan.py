@@ -83,3 +83,21 @@ def test_pin_units_writes_bel(tmp_path):
                      "u_dut.g_unit[1].u_unit": [sites[12], sites[23]]}
     with pytest.raises(floorplan.FloorplanError, match="no module 'other'"):
         floorplan.pin_units(path, "other")
+
+
+def test_paired_units_grouped():
+    # 6/6 units with two products a block (rtl/pluecker_mul_pair.sv): six
+    # MULT18X18D under <unit>.g_pair; 26 such units fill the 156 sites.
+    def paired(prefix: str) -> list[str]:
+        return [f"{prefix}.g_pair.g_axis[{i}].u_mul_{ab}.u_mult" for i in range(3) for ab in "ab"]
+
+    names = [c for k in range(26) for c in paired(f"u_dut.g_unit[{k}].u_unit")]
+    sites = floorplan.assign(names)
+    assert len(set(sites.values())) == 156
+    index = {s: i for i, s in enumerate(floorplan.dsp_sites())}
+    for k in range(26):
+        idx = sorted(index[sites[c]] for c in paired(f"u_dut.g_unit[{k}].u_unit"))
+        assert idx == list(range(6 * k, 6 * k + 6)), (k, idx)
+    assert floorplan.unit_of("u_dut.g_unit[3].u_unit.g_pair.g_axis[1].u_mul_b.u_mult") == "u_dut.g_unit[3].u_unit"
+    with pytest.raises(floorplan.FloorplanError, match="g_pairx"):
+        floorplan.assign(["u_dut.g_pairx.u_mult"])

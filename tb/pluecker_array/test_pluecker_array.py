@@ -254,12 +254,14 @@ if cocotb is not None:
 
 # (N_DSP, N_LUT, COORD_BITS, DIR_BITS, CONSERVATIVE, PIPELINE, RST_STAGES,
 # ecp5): a mixed pair at 16/16 (the DSP lane on the MULT18X18D model), three
-# fabric lanes at 8/8, and a mixed four with the multipliers' extra
-# register and a two-stage reset tree.
+# fabric lanes at 8/8, a mixed four with the multipliers' extra
+# register and a two-stage reset tree, and the mixed 6/6 chip's lanes
+# (PIPELINE = 2: DSP lanes with two products per MULT18X18D model).
 CONFIGS = [
     (1, 1, 16, 16, 1, 0, 0, True),
     (0, 3, 8, 8, 0, 0, 0, False),
     (2, 2, 10, 12, 1, 1, 2, False),
+    (2, 1, 6, 6, 1, 2, 1, True),
 ]
 
 

@@ -166,7 +166,9 @@ if cocotb is not None:
 # simulates), "lut" (MUL_STYLE "lut"), and "dsp-ecp5": MUL_STYLE "dsp" with
 # PLUECKER_ECP5 defined, i.e. the MULT18X18D blocks of the FPGA build
 # (simulated with the model in tb/pluecker_tb/hdl/, see pluecker_tb.ecp5),
-# one per product up to 17 bits, split into partial products above.
+# one per product up to 17 bits, split into partial products above; at
+# 6/6 with PIPELINE = 2 one per difference for both its products
+# (rtl/pluecker_mul_pair.sv).
 #
 # (COORD_BITS, DIR_BITS, CONSERVATIVE, style, PIPELINE, queries): LATENCY =
 # 6 + MUL_ADD + PIPELINE,
@@ -186,6 +188,7 @@ SHORT = [
     (24, 24, 0, "dsp-ecp5", 0, 0.25),  # LATENCY 8, nearest at a wide width, DSP with both operands split
     (16, 16, 1, "dsp-ecp5", 2, 0.25),  # LATENCY 8: PIPELINE = 2, a fabric register after every MULT18X18D
     (8, 8, 1, "auto", 2, 0.25),       # LATENCY 8: PIPELINE = 2 in fabric (tree cut, output register)
+    (6, 6, 1, "dsp-ecp5", 2, 0.25),   # LATENCY 8: PIPELINE = 2, two products per MULT18X18D (paired)
 ]
 # PLUECKER_LONG=1: every width pair above in both modes with the default
 # multipliers, and the other builds, all at the full (25x) query counts.

@@ -165,8 +165,14 @@ int PortContract::fifo_depth() const {
     return depth;
 }
 
+bool PortContract::paired_products() const {
+    // a*(b0 + b1 2^K), K = WA - 1 + D, must fit the unsigned 18-bit port.
+    return !fabric_ && config_.pipeline == 2 && config_.coord_bits + 2 * config_.dir_bits <= L::kDspOperandBits;
+}
+
 int PortContract::dsp_blocks() const {
     if (fabric_) return 0;
+    if (paired_products()) return L::kProducts / 2;
     return L::kProducts * (split(mul_a_bits()) ? 2 : 1) * (split(mul_b_bits()) ? 2 : 1);
 }
 
@@ -275,6 +281,7 @@ std::string contract_sv_package() {
     table("contract_mul_add", "int", "MUL_ADD", [](const ContractClass& c) { return c.mul_add; });
     table("contract_latency", "int", "LATENCY", [](const ContractClass& c) { return c.latency; });
     table("contract_fifo_depth", "int", "FIFO_DEPTH", [](const ContractClass& c) { return c.fifo_depth; });
+    table("contract_mult18x18d", "int", "MULT18X18D of one unit", [](const ContractClass& c) { return c.dsp_blocks; });
     s << axis_sv_functions();
     s << "endpackage\n";
     return s.str();

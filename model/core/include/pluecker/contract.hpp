@@ -32,7 +32,12 @@
 //   LATENCY = 6 + S2X               input handshake to the earliest output
 //                                   handshake (S0..S4 and the FIFO write)
 //   FIFO_DEPTH                      the smallest power of two >= LATENCY + 2
-//   MULT18X18D per unit             0 with fabric multipliers, else
+//   paired products                 DSP multipliers, PIPELINE = 2 and
+//                                   C + 2 D <= 18 (6/6): one MULT18X18D
+//                                   does both products of a difference
+//                                   (rtl/pluecker_mul_pair.sv)
+//   MULT18X18D per unit             0 with fabric multipliers, 6 with paired
+//                                   products, else
 //                                   12 (1 + (WA > 18)) (1 + (WB > 18))
 //
 // Ports (port_list): x in the low field, then y, then z; coordinates
@@ -127,6 +132,7 @@ public:
     int s2x_stages() const { return config_.pipeline + mul_add_; }
     int latency() const { return ContractLimits::kBaseLatency + s2x_stages(); }
     int fifo_depth() const;
+    bool paired_products() const;  // two products per MULT18X18D
     int dsp_blocks() const;  // MULT18X18D of one intersector
 
     // Every port of the module, in declaration order.
