@@ -17,6 +17,7 @@ libraries, nothing else set up.
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -43,9 +44,44 @@ def test_core_list(tmp_path):
         assert core in r.stdout, r.stdout
 
 
+def _core_files(core: Path) -> tuple[str, list[str], list[str]]:
+    """A core file's name, its RTL files and the cores it depends on (by name)."""
+    text = core.read_text()
+    name = re.search(r"^name: (\S+):[\d.]+$", text, re.M).group(1)
+    files = re.findall(r"^\s+- (\S+\.sv)$", text, re.M)
+    deps = [d.rsplit(":", 1)[0] for d in re.findall(r'^\s+- ">=(\S+)"$', text, re.M)]
+    return name, files, deps
+
+
+def test_cores_hold_every_module_they_instantiate():
+    """Every pluecker_* module that a core's RTL instantiates (in any
+    generate branch, at any depth) is in that core or a core it depends on:
+    a user's FuseSoC build finds every module at every parameter value."""
+    cores = {n: (f, d) for n, f, d in map(_core_files, (ROOT / "rtl").glob("*.core"))}
+
+    def closure(name: str) -> set[str]:
+        files, deps = cores[name]
+        return set(files).union(*(closure(d) for d in deps if d in cores))
+
+    inst = re.compile(r"^\s*(pluecker_\w+)\s*(?:#\s*\(|\w+\s*\()", re.M)
+    for name in cores:
+        have = closure(name)
+        todo, seen = [f for f in have if not f.endswith("_pkg.sv")], set()
+        while todo:
+            f = todo.pop()
+            if f in seen:
+                continue
+            seen.add(f)
+            for mod in inst.findall((ROOT / "rtl" / f).read_text()):
+                assert f"{mod}.sv" in have, f"{name}: {f} instantiates {mod}, whose file the core lacks"
+                todo.append(f"{mod}.sv")
+
+
 def test_lint_targets(tmp_path):
     for core, params in [("pluecker:ip:intersector", []), ("pluecker:ip:intersector", ["--COORD_BITS=6",
                           "--DIR_BITS=6"]), ("pluecker:ip:axis", []), ("pluecker:ip:axis", ["--COORD_BITS=24"]),
+                         ("pluecker:ip:intersector", ["--COORD_BITS=6", "--DIR_BITS=6", "--PIPELINE=2",
+                                                      "--MUL_STYLE=dsp"]),  # two products a block
                          ("pluecker:ip:array", ["--N_DSP=2", "--N_LUT=1"]),
                          ("pluecker:ip:intersector", ["--TERNARY=1"]),
                          ("pluecker:ip:cascade", ["--N_NARROW=3", "--NARROW_COORD_BITS=8", "--NARROW_DIR_BITS=8"])]:
