@@ -237,10 +237,10 @@ MUTANTS: list[Mutant] = [
            ["formal:18x18"]),
     # --- multipliers ---------------------------------------------------------
     Mutant("mul-dsp-unsigned-a", "pluecker_mul: MULT18X18D with SIGNEDA low (operand A unsigned)",
-           [("rtl/pluecker_mul.sv", ".SIGNEDA(1'b1)", ".SIGNEDA(1'b0)")],
+           [("rtl/pluecker_mul.sv", ".SIGNED_A(1'b1)", ".SIGNED_A(1'b0)")],
            ["cocotb:tb/pluecker_mul/test_pluecker_mul.py::test_pluecker_mul_ecp5[17x17_p0]"]),
     Mutant("mul-dsp-unsigned-b", "pluecker_mul: MULT18X18D with SIGNEDB low (operand B unsigned)",
-           [("rtl/pluecker_mul.sv", ".SIGNEDB(1'b1)", ".SIGNEDB(1'b0)")],
+           [("rtl/pluecker_mul.sv", ".SIGNED_B(1'b1)", ".SIGNED_B(1'b0)")],
            ["cocotb:tb/pluecker_mul/test_pluecker_mul.py::test_pluecker_mul_ecp5[17x17_p0]"]),
     Mutant("mul-dsp-split-high-unsigned", "pluecker_mul: high part of a split operand A zero-extended",
            [("rtl/pluecker_mul.sv", "assign a_part[1] = 18'($signed(a_i[WA-1:17]));",

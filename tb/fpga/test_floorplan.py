@@ -25,7 +25,7 @@ def _xy(site: str) -> tuple[int, int]:
 
 def _unit_cells(prefix: str, products: int = 6) -> list[str]:
     """The twelve MULT18X18D of one 16/16 unit as Yosys names them."""
-    return [f"{prefix}.g_mul[{j}].g_dsp.u_mul_{ab}.g_dsp[0].g_used.u_mult"
+    return [f"{prefix}.g_mul[{j}].g_dsp.u_mul_{ab}.g_dsp[0].g_used.u_mult.u_block"
             for j in range(products) for ab in "ab"]
 
 
@@ -77,7 +77,7 @@ def test_pin_units_writes_bel(tmp_path):
     sites = floorplan.dsp_sites()
     assert [out[n]["attributes"]["BEL"] for n in _unit_cells("u_dut.g_unit[0].u_unit")] == sites[:12]
     assert [out[n]["attributes"]["BEL"] for n in _unit_cells("u_dut.g_unit[1].u_unit")] == sites[12:24]
-    assert out["u_dut.g_unit[0].u_unit.g_mul[0].g_dsp.u_mul_a.g_dsp[0].g_used.u_mult"]["attributes"]["src"] == "x.sv:1"
+    assert out["u_dut.g_unit[0].u_unit.g_mul[0].g_dsp.u_mul_a.g_dsp[0].g_used.u_mult.u_block"]["attributes"]["src"] == "x.sv:1"
     assert "BEL" not in out["ff"]["attributes"]
     assert spans == {"u_dut.g_unit[0].u_unit": [sites[0], sites[11]],
                      "u_dut.g_unit[1].u_unit": [sites[12], sites[23]]}
@@ -89,7 +89,7 @@ def test_paired_units_grouped():
     # 6/6 units with two products a block (rtl/pluecker_mul_pair.sv): six
     # MULT18X18D under <unit>.g_pair; 26 such units fill the 156 sites.
     def paired(prefix: str) -> list[str]:
-        return [f"{prefix}.g_pair.g_axis[{i}].u_mul_{ab}.u_mult" for i in range(3) for ab in "ab"]
+        return [f"{prefix}.g_pair.g_axis[{i}].u_mul_{ab}.u_mult.u_block" for i in range(3) for ab in "ab"]
 
     names = [c for k in range(26) for c in paired(f"u_dut.g_unit[{k}].u_unit")]
     sites = floorplan.assign(names)
@@ -98,6 +98,6 @@ def test_paired_units_grouped():
     for k in range(26):
         idx = sorted(index[sites[c]] for c in paired(f"u_dut.g_unit[{k}].u_unit"))
         assert idx == list(range(6 * k, 6 * k + 6)), (k, idx)
-    assert floorplan.unit_of("u_dut.g_unit[3].u_unit.g_pair.g_axis[1].u_mul_b.u_mult") == "u_dut.g_unit[3].u_unit"
+    assert floorplan.unit_of("u_dut.g_unit[3].u_unit.g_pair.g_axis[1].u_mul_b.u_mult.u_block") == "u_dut.g_unit[3].u_unit"
     with pytest.raises(floorplan.FloorplanError, match="g_pairx"):
         floorplan.assign(["u_dut.g_pairx.u_mult"])
