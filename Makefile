@@ -380,8 +380,12 @@ endif
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
 #             on consecutive sites, scripts/floorplan.py) or none. Both add
-#             to the folder's name (_r<K>, _fp).
+#             to the folder's name (_r<K>, _fp). CLOCKS=2 (a mixed CHIP):
+#             the fabric units on a clock of their own (target FREQ_LUT,
+#             default FREQ), each kind at its own Fmax; box tests per
+#             second NDSP x Fmax + NLUT x Fmax of the fabric clock (_clk2).
 CHIP       ?= 13x0
+CLOCKS     ?= 1
 ROUTER     ?= router2
 PLACER     ?= heap
 PIPELINE   ?= 0
@@ -391,7 +395,8 @@ FLOORPLAN  ?= dsp
 chip: setup
 	$(ENV) python scripts/synth.py $(if $(CASCADE),--cascade '$(CASCADE)',--array $(CHIP) --coord-bits $(COORD_BITS) \
 	  --dir-bits $(DIR_BITS)) --pipeline $(PIPELINE) --router $(ROUTER) --placer $(PLACER) --seeds $(SEEDS) --speeds "$(SPEEDS)" \
-	  --rst-stages $(RST_STAGES) --floorplan $(FLOORPLAN) --freq $(FREQ) --jobs $(JOBS) $(SYNTH_FLAGS)
+	  --rst-stages $(RST_STAGES) --floorplan $(FLOORPLAN) --freq $(FREQ) --jobs $(JOBS) \
+	  $(if $(filter-out 1,$(CLOCKS)),--clocks $(CLOCKS) $(if $(FREQ_LUT),--freq-lut $(FREQ_LUT))) $(SYNTH_FLAGS)
 
 # make chip-effective   each chip's useful box tests per second on every
 #             scene (REPORT_SCENES, REPORT_SIZE): its raw rate / (1 + the

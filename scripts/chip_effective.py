@@ -71,6 +71,7 @@ class Chip:
     rate: dict[str, float]
     cascade: dict | None = None  # {"lanes": per cascade, "wide": (C, D), "cascades": M, "plain": W}
     fmax: dict[str, float] = field(default_factory=dict)
+    fmax_lut: dict[str, float] = field(default_factory=dict)  # arrays with two clocks: the fabric units'
 
 
 def _width(s: dict, key: str = "") -> tuple[int, int]:
@@ -101,8 +102,10 @@ def load_chip(arg: str) -> Chip:
         fmax = _fmax(s, where)
         name = s.get("name") or path.parent.name
         if design == "pluecker_array":
-            rate = s["array"]["box_tests_per_s"]
-            return Chip(f"{name} (placed)", where, True, _width(s), rate, fmax=fmax)
+            rate = s["array"]["box_tests_per_s"]  # with two clocks: NDSP x Fmax + NLUT x the fabric clock's
+            two = s.get("clocks") == 2
+            return Chip(f"{name} (placed{', two clocks' if two else ''})", where, True, _width(s), rate,
+                        fmax=fmax, fmax_lut=_fmax({"pnr": True, "fmax_mhz": s["fmax_lut_mhz"]}, where) if two else {})
         if design == "pluecker_cascade":
             cc = s.get("cascade_chip")  # a placed chip; else one cascade, extrapolated to a chip of them
             rate = cc["box_tests_per_s"] if cc else s["box_tests_per_s_per_chip"]
@@ -292,7 +295,7 @@ def main(argv) -> int:
         },
         "size": args.size, "wide": width_name(wide),
         "chips": [{"name": c.name, "summary": c.source, "placed": c.placed, "width": width_name(c.width),
-                   "raw": c.rate, "fmax_mhz": c.fmax,
+                   "raw": c.rate, "fmax_mhz": c.fmax, **({"fmax_lut_mhz": c.fmax_lut} if c.fmax_lut else {}),
                    **({"cascade": {"lanes": c.cascade["lanes"], "wide": width_name(c.cascade["wide"]),
                                    "cascades": c.cascade["cascades"], "plain_wide_units": c.cascade["plain"]}}
                       if c.cascade else {})} for c in chips],

@@ -42,7 +42,8 @@
 #      four configurations (reset trees of 0, 1 and 3 stages) and its
 #      reset chain (pluecker_rst_chain) as top at 0, 1 and 8 stages; empty
 #      or negative lane counts, fabric lanes wider than 17 bits and more
-#      than 8 reset stages are refused.
+#      than 8 reset stages are refused; its out-of-context harness
+#      (fpga/ooc_array_wrapper.sv) -Wall with one clock and two.
 #   9. The ternary unit (TERNARY = 1) and the cascade (pluecker_cascade):
 #      -Wall at several narrow/wide widths, with and without ASSERT_ON;
 #      TERNARY without CONSERVATIVE, no lanes and a wide format narrower
@@ -547,6 +548,19 @@ refused "verilator rejects array N_DSP=-1" "must not be negative" -GN_DSP=-1 -GN
     --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array fabric lanes at $HI bits" 'MUL_STYLE "lut"' -GN_DSP=1 -GN_LUT=1 \
     -GCOORD_BITS="$HI" -GDIR_BITS="$HI" --top-module pluecker_array "${SOURCES[@]}"
+# The array's out-of-context harness (fpga/ooc_array_wrapper.sv), one clock
+# and two (the fabric units on clk_lut_i); two clocks need both kinds.
+for cfg in "2 3 6 6 2 3 1" "2 3 6 6 2 3 2" "1 1 8 8 0 0 2"; do
+    read -r nd nl c d pipe rs clocks <<< "$cfg"
+    LINT_TOP=ooc_array_wrapper lint_clean \
+        "verilator -Wall array harness N_DSP=$nd N_LUT=$nl C=$c D=$d CLOCKS=$clocks" \
+        -GN_DSP="$nd" -GN_LUT="$nl" -GCOORD_BITS="$c" -GDIR_BITS="$d" -GPIPELINE="$pipe" -GRST_STAGES="$rs" \
+        -GCLOCKS="$clocks" fpga/ooc_array_wrapper.sv
+done
+refused "verilator rejects array harness CLOCKS=2 without fabric units" "CLOCKS = 2 needs" -GN_DSP=2 \
+    -GN_LUT=0 -GCLOCKS=2 --top-module ooc_array_wrapper "${SOURCES[@]}" fpga/ooc_array_wrapper.sv
+refused "verilator rejects array harness CLOCKS=3" "CLOCKS must be 1 or 2" -GCLOCKS=3 \
+    --top-module ooc_array_wrapper "${SOURCES[@]}" fpga/ooc_array_wrapper.sv
 
 # --- 9. The cascade (pluecker_cascade: ternary narrow lanes, one wide unit) --
 for cfg in "1 $LO $LO 16 16 0" "2 8 8 16 16 0" "3 8 8 $HI $HI 1" "4 10 10 12 12 0"; do

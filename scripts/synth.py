@@ -58,7 +58,14 @@ out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>[_w<W>]/. Whole chips take
 two more options (`make chip` sets both): --rst-stages K, a reset tree of K
 flops per unit (per cascade) so that no reset net spans the die (folder
 suffix _r<K>), and --floorplan dsp, each unit's MULT18X18D on consecutive
-sites of the DSP rows (scripts/floorplan.py; suffix _fp).
+sites of the DSP rows (scripts/floorplan.py; suffix _fp). --clocks 2 (a
+mixed --array only) puts the fabric units on a clock of their own
+(clk_lut_i; the DSP units stay on clk_i), so that each kind runs at its own
+Fmax: nextpnr gets one target per clock (--freq, --freq-lut; an LPF file
+of FREQUENCY PORT lines, clocks.lpf in the run's folder), the summary keeps
+both clocks' Fmax (fmax_mhz: clk_i, fmax_lut_mhz: clk_lut_i) and the chip's
+box tests per second are NDSP x Fmax(clk_i) + NLUT x Fmax(clk_lut_i)
+(folder suffix _clk2).
 """
 from __future__ import annotations
 
@@ -316,14 +323,25 @@ def run_yosys(yosys: str, sources: list[Path], design: Design, outdir: Path, fla
 
 def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int,
                 freq: float, top: str = TOP, router: str = "router1", placer: str = "heap",
-                extra: tuple[str, ...] = ()) -> list[str]:
+                extra: tuple[str, ...] = (), lpf: str | None = None) -> list[str]:
     """nextpnr command line, run with rundir as working directory; extra:
-    more nextpnr options (e.g. the heap placer's weights), appended as given."""
+    more nextpnr options (e.g. the heap placer's weights), appended as given;
+    lpf: an LPF file in rundir (per-clock targets, clock_lpf)."""
     return [nextpnr, DEVICE_FLAG, "--package", PACKAGE, "--speed", str(speed),
             "--seed", str(seed), "--json", rel(netlist, rundir), "--top", top,
             "--out-of-context", "--freq", f"{freq:g}", "--timing-allow-fail",
             "--placer", placer, "--router", router,
+            *(["--lpf", lpf, "--lpf-allow-unconstrained"] if lpf else []),
             "--report", "report.json", "-l", "nextpnr.log", "-q", *extra]
+
+
+# The fabric units' clock of an array placed with --clocks 2.
+LUT_CLOCK = "clk_lut_i"
+
+
+def clock_lpf(targets: dict[str, float]) -> str:
+    """An LPF file giving each clock port its own nextpnr target (MHz)."""
+    return "".join(f'FREQUENCY PORT "{clk}" {f:g} MHZ;\n' for clk, f in targets.items())
 
 
 _SUFFIX = re.compile(r"\$CCU2_(COMB|FF)\d*$")
@@ -422,7 +440,13 @@ def parse_report(report_path: Path, types: dict[str, str], base: Path) -> dict:
         paths.append(s)
     # The register-to-register path of the main clock limits Fmax.
     worst = max(paths, key=lambda p: p["delay_ns"]) if paths else None
-    return {"fmax_mhz": fmax, "utilisation": util, "critical_path": worst}
+    # Each clock's own (a chip with two clocks: each limits its units).
+    by_clock = {}
+    for p in paths:
+        clk = p["from"].removeprefix("posedge ")
+        if p["to"].removeprefix("posedge ") == clk and p["delay_ns"] > by_clock.get(clk, {}).get("delay_ns", -1):
+            by_clock[clk] = p
+    return {"fmax_mhz": fmax, "utilisation": util, "critical_path": worst, "critical_path_by_clock": by_clock}
 
 
 # router2's progress line, one per routing iteration (nextpnr.log)
@@ -539,6 +563,8 @@ def run_pnr(job: dict) -> dict:
     report = rundir / "report.json"
     if report.exists():
         report.unlink()
+    if job.get("lpf"):
+        (rundir / "clocks.lpf").write_text(job["lpf"])
     patience = job.get("ripup_patience", 0)
     watch = RipupWatch(patience) if patience else None
     t0 = time.monotonic()
@@ -557,6 +583,13 @@ def run_pnr(job: dict) -> dict:
     out.update(parse_report(report, cell_types(job["netlist"], job["top"]), job["base"]))
     clocks = out["fmax_mhz"]
     out["fmax"] = clocks.get("clk_i", next(iter(clocks.values()), None))
+    by_clock = out.pop("critical_path_by_clock")
+    if job.get("lpf"):  # two clocks: both must be timed; each has its own limit
+        out["fmax_lut"] = clocks.get(LUT_CLOCK)
+        if out["fmax"] is None or out["fmax_lut"] is None:
+            out["error"] = f"nextpnr timed {sorted(clocks)}, not both clk_i and {LUT_CLOCK}"
+        out["critical_path"] = by_clock.get("clk_i", out["critical_path"])
+        out["critical_path_lut"] = by_clock.get(LUT_CLOCK)
     return out
 
 
@@ -598,15 +631,22 @@ def chip_figures(u: dict, fmax: dict, tests_per_clock: int) -> dict:
                                          for sp, f in fmax.items()}}
 
 
-def array_figures(design: Design, by_speed: dict, out: Path) -> dict:
+def array_figures(design: Design, by_speed: dict, out: Path, by_speed_lut: dict | None = None) -> dict:
     """A placed array's own box tests per second (its units x its median
-    Fmax, nothing extrapolated) beside the one-unit extrapolation of the
-    same widths (out/<C>x<D>[_lut]/summary.json of the unit's own run, when
-    there is one): what the array keeps of it."""
+    Fmax, nothing extrapolated; with two clocks, by_speed_lut the fabric
+    units' clock: NDSP x Fmax(clk_i) + NLUT x Fmax(clk_lut_i)) beside the
+    one-unit extrapolation of the same widths (out/<C>x<D>[_lut]/summary.json
+    of the unit's own run, when there is one): what the array keeps of it."""
     p = design.params
     n = p["N_DSP"] + p["N_LUT"]
-    placed = {sp: round(f["median"] * 1e6 * n) for sp, f in by_speed.items()}
+    if by_speed_lut is None:
+        placed = {sp: round(f["median"] * 1e6 * n) for sp, f in by_speed.items()}
+    else:
+        placed = {sp: round((f["median"] * p["N_DSP"] + by_speed_lut[sp]["median"] * p["N_LUT"]) * 1e6)
+                  for sp, f in by_speed.items() if sp in by_speed_lut}
     fig = {"units": n, "n_dsp": p["N_DSP"], "n_lut": p["N_LUT"], "box_tests_per_s": placed, "extrapolation": {}}
+    if by_speed_lut is not None:
+        fig["clocks"] = {"clk_i": f"{p['N_DSP']} DSP units", LUT_CLOCK: f"{p['N_LUT']} fabric units"}
     pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
     counts = {"dsp": p["N_DSP"], "lut": p["N_LUT"]}
     for style, count in counts.items():
@@ -688,14 +728,21 @@ def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
 
 def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict) -> dict:
     by_speed: dict[str, dict] = {}
+    by_speed_lut: dict[str, dict] = {}
     limits: dict[str, dict] = {}
+    limits_lut: dict[str, dict] = {}  # two clocks: the fabric units' clock
+    two_clocks = design.params.get("CLOCKS", 1) == 2
     for speed in args.speed_list:
-        ok = [r for r in runs if r["speed"] == speed and r.get("fmax")]
+        ok = [r for r in runs if r["speed"] == speed and r.get("fmax") and "error" not in r]
         if not ok:
             continue
         by_speed[str(speed)] = fmax_stats([r["fmax"] for r in ok])
         worst = min(ok, key=lambda r: r["fmax"])
         limits[str(speed)] = dict(worst["critical_path"] or {}, seed=worst["seed"])
+        if two_clocks:
+            by_speed_lut[str(speed)] = fmax_stats([r["fmax_lut"] for r in ok])
+            worst = min(ok, key=lambda r: r["fmax_lut"])
+            limits_lut[str(speed)] = dict(worst["critical_path_lut"] or {}, seed=worst["seed"])
     row = design.row
     u = utilisation(ys, runs)
     summary = {
@@ -721,13 +768,15 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "utilisation": u,
         "yosys_cells": ys["cells"],
         "fmax_mhz": by_speed,
+        **({"fmax_lut_mhz": by_speed_lut, "target_lut_mhz": args.freq_lut} if two_clocks else {}),
         **chip_figures(u, by_speed, design.tests_per_clock),
         "critical_path": limits,
+        **({"critical_path_lut": limits_lut} if two_clocks else {}),
         "runs": [{k: v for k, v in r.items() if k != "utilisation"} for r in runs],
         "pnr": not args.no_pnr,
     }
     if design.fields.get("unit") == "array":
-        summary["array"] = array_figures(design, by_speed, Path(args.out))
+        summary["array"] = array_figures(design, by_speed, Path(args.out), by_speed_lut if two_clocks else None)
     if design.fields.get("unit") == "cascade" and (design.params["N_CASCADES"] > 1 or design.params.get("N_WIDE")):
         summary["cascade_chip"] = cascade_chip_figures(design, by_speed, Path(args.out))
     with open(base / "summary.json", "w") as f:
@@ -765,6 +814,9 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             line += f"  {cell:>26}"
         if sm.get("array"):  # the placed array's own rate, and what it keeps of the extrapolation
             a = sm["array"]
+            if sm.get("fmax_lut_mhz"):
+                line += "  fabric units' clock " + ", ".join(
+                    f"speed {sp}: {f['median']:.1f} MHz" for sp, f in sm["fmax_lut_mhz"].items()) + ";"
             line += f"  {a['units']} units placed; " + _placed_rates(
                 a, "one-unit extrapolation", "same units at their one-unit Fmax")
             if not a.get("of_same_units_alone") and not a.get("extrapolation"):
@@ -778,13 +830,16 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
         print(line)
     for sm in summaries:
-        for s, cp in sm["critical_path"].items():
-            print(f"{sm['config']} speed {s} (seed {cp['seed']}) limit: "
-                  f"{cp['delay_ns']} ns ({cp['logic_ns']} logic, {cp['routing_ns']} routing): "
-                  f"{cp['cell_chain']}")
-            print(f"    {cp['source_cell']} -> {cp['sink_cell']}.{cp['sink_port']}")
-            if cp.get("rtl_sources"):
-                print(f"    RTL: {', '.join(cp['rtl_sources'][:6])}")
+        for key, clock in (("critical_path", ""), ("critical_path_lut", " (fabric units' clock)")):
+            for s, cp in sm.get(key, {}).items():
+                if "delay_ns" not in cp:
+                    continue
+                print(f"{sm['config']} speed {s} (seed {cp['seed']}) limit{clock}: "
+                      f"{cp['delay_ns']} ns ({cp['logic_ns']} logic, {cp['routing_ns']} routing): "
+                      f"{cp['cell_chain']}")
+                print(f"    {cp['source_cell']} -> {cp['sink_cell']}.{cp['sink_port']}")
+                if cp.get("rtl_sources"):
+                    print(f"    RTL: {', '.join(cp['rtl_sources'][:6])}")
 
 
 # --------------------------------------------------------------------------
@@ -881,13 +936,19 @@ def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
     row = {"latency": any_row["latency"], "fifo_depth": any_row["fifo_depth"],
            "mult18x18d": nd * rows["dsp"]["mult18x18d"] if nd else 0,
            "multiplier": f"{nd} units with MULT18X18D, {nl} in fabric"}
-    name = f"array_{nd}x{nl}_{c}x{d}" + (f"_p{args.pipeline}" if args.pipeline else "")
+    if args.clocks == 2 and not (nd and nl):
+        raise FlowError(f"--clocks 2 puts the fabric units on a clock of their own: --array {nd}x{nl} "
+                        "needs both DSP and fabric units")
+    name = (f"array_{nd}x{nl}_{c}x{d}" + (f"_p{args.pipeline}" if args.pipeline else "")
+            + ("_clk2" if args.clocks == 2 else ""))
     params = {"N_DSP": nd, "N_LUT": nl, "COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
-              "CONSERVATIVE": args.conservative, "PIPELINE": args.pipeline, "RST_STAGES": args.rst_stages}
+              "CONSERVATIVE": args.conservative, "PIPELINE": args.pipeline, "RST_STAGES": args.rst_stages,
+              "CLOCKS": args.clocks}
     return Design(name, "ooc_array_wrapper", ARRAY_WRAPPER, "pluecker_array", params, row,
-                  {"config": f"array {nd}x{nl} {c}x{d}", "unit": "array", "name": name, "coord_bits": c,
+                  {"config": f"array {nd}x{nl} {c}x{d}" + (" 2 clocks" if args.clocks == 2 else ""),
+                   "unit": "array", "name": name, "coord_bits": c,
                    "dir_bits": d, "pipeline": args.pipeline, "rst_stages": args.rst_stages, "n_dsp": nd,
-                   "n_lut": nl}, tests_per_clock=nd + nl)
+                   "n_lut": nl, "clocks": args.clocks}, tests_per_clock=nd + nl)
 
 
 CASCADE_WRAPPER = ROOT / "fpga" / "ooc_cascade_wrapper.sv"
@@ -1023,18 +1084,22 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
     built = [d for d in designs if d.name in done]
     runs: dict[str, list] = {d.name: [] for d in built}
     if not args.no_pnr and built:
-        say(f"synth: nextpnr at speeds {args.speeds}, seeds {args.seeds_text}, target {args.freq:g} MHz")
+        say(f"synth: nextpnr at speeds {args.speeds}, seeds {args.seeds_text}, target {args.freq:g} MHz"
+            + (f" (fabric units' clock {args.freq_lut:g} MHz)" if args.clocks == 2 else ""))
         pnr_jobs, of_design = [], {}
         for d in built:
             base = Path(args.out) / d.name
             for speed in args.speed_list:
                 for seed in args.seed_list:
                     rundir = base / "pnr" / f"speed{speed}_seed{seed}"
+                    two = d.params.get("CLOCKS", 1) == 2
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                            "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
                            "ripup_patience": ripup_patience(args) or 0,
+                           "lpf": clock_lpf({"clk_i": args.freq, LUT_CLOCK: args.freq_lut}) if two else None,
                            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
-                                               args.router, args.placer, tuple(args.nextpnr_args))}
+                                               args.router, args.placer, tuple(args.nextpnr_args),
+                                               "clocks.lpf" if two else None)}
                     name = f"{d.name} speed{speed} seed{seed}"
                     pnr_jobs.append(jobs.Job(name, "synth:run_pnr", (job,)))
                     of_design[name] = d.name
@@ -1073,6 +1138,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "holds those seeds' runs alone)")
     p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
+    p.add_argument("--clocks", type=int, choices=(1, 2), default=1,
+                   help="--array: 2 puts the fabric units on a clock of their own (clk_lut_i, target "
+                        "--freq-lut), each kind at its own Fmax; adds _clk2 to the output folder's name")
+    p.add_argument("--freq-lut", type=float, default=None,
+                   help="--clocks 2: nextpnr target of the fabric units' clock (MHz; default --freq)")
     p.add_argument("--router", choices=("router1", "router2"), default="router1",
                    help="nextpnr router (router2 converges where router1 stalls on a congested whole chip)")
     p.add_argument("--placer", choices=("heap", "static", "sa"), default="heap",
@@ -1123,6 +1193,14 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error("--mul-dsp is a parameter of the binary32 units (--unit float or smits)")
     if args.smoke:
         args.seeds, args.speeds = "1", "8"
+    if args.clocks == 2 and not args.array:
+        p.error("--clocks 2 is for a mixed --array (DSP units on clk_i, fabric units on clk_lut_i)")
+    if args.freq_lut is not None and args.clocks != 2:
+        p.error("--freq-lut is the target of the fabric units' clock: give --clocks 2 too")
+    if args.freq_lut is None:
+        args.freq_lut = args.freq
+    if args.freq <= 0 or args.freq_lut <= 0:
+        p.error(f"--freq {args.freq:g}, --freq-lut {args.freq_lut:g}: targets must be positive (MHz)")
     if args.out is None:
         args.out = str(ROOT / "out" / ("synth-smoke" if args.smoke else "synth"))
     try:

@@ -195,6 +195,63 @@ def test_cascade_yosys(tmp_path):
     assert bad.returncode == 1 and "[M*]N:CxD:WCxWD[+W]" in bad.stderr, bad.stderr
 
 
+def test_array_two_clocks_smoke(tmp_path):
+    """A mixed two-unit array at 6/6 with two clocks (--clocks 2): the DSP
+    unit (u_dut) on clk_i, the fabric unit (g_lut_clk.u_dut) on clk_lut_i,
+    as the netlist's flip-flops show; nextpnr constrains each clock to its
+    own target (--freq, --freq-lut, through the LPF file), times both, and
+    the array's box tests per second are the sum of each unit's clock."""
+    reason = _tools_missing()
+    if reason:
+        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--array", "1x1", "--coord-bits", "6",
+                          "--dir-bits", "6", "--pipeline", "2", "--clocks", "2", "--freq", "250", "--freq-lut", "150",
+                          "--smoke", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --array --clocks 2 failed:\n{res.stdout}\n{res.stderr}"
+    base = tmp_path / "array_1x1_6x6_p2_clk2"
+    s = json.loads((base / "summary.json").read_text())
+    assert s["clocks"] == 2 and s["target_mhz"] == 250 and s["target_lut_mhz"] == 150, s
+    (run,) = s["runs"]
+    assert "error" not in run and run["fmax"] > 0 and run["fmax_lut"] > 0, run
+    assert set(run["fmax_mhz"]) == {"clk_i", "clk_lut_i"}, run["fmax_mhz"]
+    log = (base / "pnr" / "speed8_seed1" / "nextpnr.log").read_text()
+    assert "constraining clock net 'clk_i' to 250.00 MHz" in log, log[-2000:]
+    assert "constraining clock net 'clk_lut_i' to 150.00 MHz" in log, log[-2000:]
+    dsp, lut = s["fmax_mhz"]["8"]["median"], s["fmax_lut_mhz"]["8"]["median"]
+    assert (dsp, lut) == (run["fmax"], run["fmax_lut"])
+    assert s["array"]["box_tests_per_s"]["8"] == round((dsp + lut) * 1e6)
+    # Each unit's flip-flops on its own clock net.
+    top = json.loads((base / "netlist.json").read_text())["modules"]["ooc_array_wrapper"]
+    clk = {p: top["ports"][p]["bits"][0] for p in ("clk_i", "clk_lut_i")}
+    ffs = [(n, c["connections"]["CLK"][0]) for n, c in top["cells"].items() if c["type"] == "TRELLIS_FF"]
+    dsp_ffs = {b for n, b in ffs if n.startswith("u_dut.g_unit[0].")}
+    lut_ffs = {b for n, b in ffs if n.startswith("g_lut_clk.u_dut.g_unit[0].")}
+    assert dsp_ffs == {clk["clk_i"]} and lut_ffs == {clk["clk_lut_i"]}, (dsp_ffs, lut_ffs, clk)
+    assert s["utilisation"]["MULT18X18D"] == 6  # the DSP unit's paired products at 6/6, PIPELINE 2
+    # Each clock's own limit: none of clk_i's path in the fabric unit, none
+    # of clk_lut_i's in the DSP unit.
+    dsp_cp, lut_cp = s["critical_path"]["8"], s["critical_path_lut"]["8"]
+    assert dsp_cp["delay_ns"] > 0 and lut_cp["delay_ns"] > 0, (dsp_cp, lut_cp)
+    assert not any(dsp_cp[k].startswith("g_lut_clk.") for k in ("source_cell", "sink_cell")), dsp_cp
+    assert not any(lut_cp[k].startswith("u_dut.") for k in ("source_cell", "sink_cell")), lut_cp
+    assert "limit (fabric units' clock)" in res.stdout, res.stdout
+
+
+def test_two_clocks_refused(tmp_path, capsys):
+    """--clocks 2 only for a mixed --array; --freq-lut only with it (no tools)."""
+    for argv, why in ((["--clocks", "2"], "--clocks 2 is for a mixed --array"),
+                      (["--array", "1x1", "--freq-lut", "200"], "--freq-lut is the target"),
+                      (["--array", "1x1", "--clocks", "2", "--freq-lut", "0"], "targets must be positive")):
+        with pytest.raises(SystemExit):
+            synth.parse_args(argv)
+        assert why in capsys.readouterr().err
+    assert synth.main(["--array", "2x0", "--clocks", "2", "--no-pnr", "--out", str(tmp_path)]) == 1
+    assert "--array 2x0 needs both DSP and fabric units" in capsys.readouterr().err
+    assert synth.clock_lpf({"clk_i": 250.0, "clk_lut_i": 187.5}) == (
+        'FREQUENCY PORT "clk_i" 250 MHZ;\nFREQUENCY PORT "clk_lut_i" 187.5 MHZ;\n')
+
+
 def test_array_figures_same_units_alone(tmp_path):
     """A placed mixed array against the same units at their one-unit Fmax
     (array_figures, no tools): 2 DSP units alone at 200 MHz and 3 fabric
@@ -221,6 +278,14 @@ def test_array_figures_same_units_alone(tmp_path):
                         dict(params, N_DSP=13, N_LUT=0), {})
     fig = synth.array_figures(pure, {"8": {"median": 100.0}}, tmp_path)
     assert fig["of_extrapolation"] == {"8": 0.5} and fig["of_same_units_alone"] == {"8": 0.5}
+    # Two clocks: 2 DSP units at 150 MHz and 3 fabric units at 110 MHz give
+    # 630 M, 90 % of the same units alone (at speed 6 the fabric clock has no
+    # figure: no rate).
+    fig = synth.array_figures(design, {"8": {"median": 150.0}, "6": {"median": 120.0}}, tmp_path,
+                              {"8": {"median": 110.0}})
+    assert fig["box_tests_per_s"] == {"8": 630_000_000}
+    assert fig["of_same_units_alone"] == {"8": 0.9}
+    assert fig["clocks"] == {"clk_i": "2 DSP units", "clk_lut_i": "3 fabric units"}
 
 
 def test_cascade_chip_figures_same_units_alone(tmp_path):

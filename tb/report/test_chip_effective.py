@@ -1,8 +1,8 @@
 # SPDX-License-Identifier: MIT
 """scripts/chip_effective.py on hand-written summaries (a placed array at
 8/8, one 16/16 unit extrapolated, a placed chip of cascades whose wide units
-keep up, one whose wide units saturate, and one with plain wide units beside
-its cascades) and a small scene: each figure
+keep up, one whose wide units saturate, one with plain wide units beside
+its cascades, and a mixed array with two clocks) and a small scene: each figure
 follows from the summary and the `pluecker cascade` JSON the script wrote;
 unusable summaries are refused by name."""
 import json
@@ -63,6 +63,12 @@ def test_figures_follow_from_the_summaries(tmp_path):
     chips = [array(tmp_path, 8, 8, 29, 137.0), unit(tmp_path, 16, 16, 13, 250.0),
              cascades(tmp_path, 6, 2, 8, 8, 120.0), cascades(tmp_path, 3, 6, 6, 6, 100.0),
              cascades(tmp_path, 2, 6, 6, 6, 110.0, plain=5)]
+    # a mixed array with two clocks: 2 DSP units at 150 MHz, 3 fabric at 120
+    two = write(tmp_path / "array_8x8_clk2", {
+        "design": "pluecker_array", "name": "array_8x8_clk2", "coord_bits": 8, "dir_bits": 8, "pnr": True,
+        "clocks": 2, "fmax_mhz": fmax(150.0), "fmax_lut_mhz": fmax(120.0),
+        "array": {"units": 5, "box_tests_per_s": {"8": (2 * 150 + 3 * 120) * 1e6}}})
+    chips.append(two)
     r = run(chips, tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "[chip-effective] [1/1] sphere:500: done in" in r.stdout  # progress
@@ -74,7 +80,8 @@ def test_figures_follow_from_the_summaries(tmp_path):
     got = res["scenes"][SCENE]["chips"]
     names = [c["name"] for c in res["chips"]]
     assert names == ["array_8x8 (placed)", "16x16 (extrapolated from one unit)", "cascade_6x2_8x8 (placed)",
-                     "cascade_3x6_6x6 (placed)", "cascade_2x6_6x6_w5 (placed)"]
+                     "cascade_3x6_6x6 (placed)", "cascade_2x6_6x6_w5 (placed)",
+                     "array_8x8_clk2 (placed, two clocks)"]
 
     x8 = narrow[(8, 8)]["narrow_alone"]["extra_percent"]["box_tests"]
     assert x8 > 0  # a narrow unit's false hits cost work on this scene
@@ -108,6 +115,10 @@ def test_figures_follow_from_the_summaries(tmp_path):
     assert e["raw"] == pytest.approx(17 * 110e6) and e["wide_saturated"]
     assert e["served"] == pytest.approx(2 * 110e6 / esc6) and e["plain_rate"] == pytest.approx(5 * 110e6)
     assert e["effective"] == pytest.approx(2 * 110e6 / esc6 / (1 + xc6 / 100) + 5 * 110e6 / (1 + xw / 100))
+
+    # two clocks: the summary's rate (the sum over both clocks) at the 8/8 extra work
+    assert got[names[5]]["8"]["effective"] == pytest.approx(660e6 / (1 + x8 / 100))
+    assert res["chips"][5]["fmax_mhz"] == {"8": 150.0} and res["chips"][5]["fmax_lut_mhz"] == {"8": 120.0}
 
     md = (out / "effective.md").read_text()
     assert "| array_8x8 (placed) | 8/8 | 3.97 G |" in md and "wide saturated" in md
