@@ -488,11 +488,16 @@ class RipupWatch:
     def stalled(self) -> bool:
         return self.best is not None and self.iteration - self.best_iter >= self.patience
 
-    def message(self, freq: float) -> str:
+    def message(self, freq: float, freq_lut: float | None = None) -> str:
+        """freq_lut: the fabric units' target of a chip with two clocks."""
         overused, tmgfail = self.best or (0, 0)
+        target, lower = f"the {freq:g} MHz target", "--freq (FREQ=)"
+        if freq_lut is not None:
+            target = f"the {freq:g} / {freq_lut:g} MHz targets (clk_i / {LUT_CLOCK})"
+            lower = "--freq or --freq-lut (FREQ=, FREQ_LUT=)"
         return (f"rip-up stopped at router iteration {self.iteration}: no better than {tmgfail} arcs failing "
-                f"the {freq:g} MHz target ({overused} overused wires; iteration {self.best_iter}) in "
-                f"{self.patience} iterations, so the target is likely out of reach: lower --freq (FREQ=), "
+                f"{target} ({overused} overused wires; iteration {self.best_iter}) in "
+                f"{self.patience} iterations, so the target is likely out of reach: lower {lower}, "
                 f"or --ripup-patience 0 to wait for it")
 
 
@@ -573,7 +578,7 @@ def run_pnr(job: dict) -> dict:
     out = {"speed": job["speed"], "seed": job["seed"], "seconds": seconds,
            "report": str(report.relative_to(job["base"]))}
     if rc is None:
-        out["error"] = watch.message(job["freq"])
+        out["error"] = watch.message(job["freq"], job.get("freq_lut"))
         out["ripup_stalled"] = {"iteration": watch.iteration, "best_iteration": watch.best_iter,
                                 "overused": watch.best[0], "tmgfail": watch.best[1]}
         return out
@@ -1097,6 +1102,7 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
                            "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
                            "ripup_patience": ripup_patience(args) or 0,
                            "lpf": clock_lpf({"clk_i": args.freq, LUT_CLOCK: args.freq_lut}) if two else None,
+                           "freq_lut": args.freq_lut if two else None,
                            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
                                                args.router, args.placer, tuple(args.nextpnr_args),
                                                "clocks.lpf" if two else None)}

@@ -393,6 +393,8 @@ def test_ripup_watch():
     w.feed(text[30:])
     assert w.iteration == 121 and w.stalled  # 100 iterations since the best, iteration 21
     assert "no better than 106 arcs failing the 247 MHz target" in w.message(247.0)
+    two = w.message(247.0, 190.0)  # a chip with two clocks: both targets, both options
+    assert "failing the 247 / 190 MHz targets (clk_i / clk_lut_i)" in two and "--freq-lut (FREQ=, FREQ_LUT=)" in two
     # converging after 33 iterations without progress (the longest of the
     # chips that ended) and slow improvement are not stalls
     w = synth.RipupWatch(100)
