@@ -78,8 +78,8 @@ def _width(s: dict, key: str = "") -> tuple[int, int]:
     return int(s[f"{key}coord_bits"]), int(s[f"{key}dir_bits"])
 
 
-def _fmax(s: dict, where: str) -> dict[str, float]:
-    f = {sp: float(st["median"]) for sp, st in (s.get("fmax_mhz") or {}).items() if st and st.get("median")}
+def _fmax(s: dict, where: str, key: str = "fmax_mhz") -> dict[str, float]:
+    f = {sp: float(st["median"]) for sp, st in (s.get(key) or {}).items() if st and st.get("median")}
     if not s.get("pnr") or not f:
         raise BadInput(f"{where}: no placed-and-routed Fmax (a Yosys-only summary, --no-pnr?)")
     return f
@@ -105,7 +105,7 @@ def load_chip(arg: str) -> Chip:
             rate = s["array"]["box_tests_per_s"]  # with two clocks: NDSP x Fmax + NLUT x the fabric clock's
             two = s.get("clocks") == 2
             return Chip(f"{name} (placed{', two clocks' if two else ''})", where, True, _width(s), rate,
-                        fmax=fmax, fmax_lut=_fmax({"pnr": True, "fmax_mhz": s["fmax_lut_mhz"]}, where) if two else {})
+                        fmax=fmax, fmax_lut=_fmax(s, where, "fmax_lut_mhz") if two else {})
         if design == "pluecker_cascade":
             cc = s.get("cascade_chip")  # a placed chip; else one cascade, extrapolated to a chip of them
             rate = cc["box_tests_per_s"] if cc else s["box_tests_per_s_per_chip"]

@@ -568,8 +568,9 @@ def run_pnr(job: dict) -> dict:
     report = rundir / "report.json"
     if report.exists():
         report.unlink()
-    if job.get("lpf"):
-        (rundir / "clocks.lpf").write_text(job["lpf"])
+    two_clocks = job.get("freq_lut") is not None
+    if two_clocks:
+        (rundir / "clocks.lpf").write_text(clock_lpf({"clk_i": job["freq"], LUT_CLOCK: job["freq_lut"]}))
     patience = job.get("ripup_patience", 0)
     watch = RipupWatch(patience) if patience else None
     t0 = time.monotonic()
@@ -589,7 +590,7 @@ def run_pnr(job: dict) -> dict:
     clocks = out["fmax_mhz"]
     out["fmax"] = clocks.get("clk_i", next(iter(clocks.values()), None))
     by_clock = out.pop("critical_path_by_clock")
-    if job.get("lpf"):  # two clocks: both must be timed; each has its own limit
+    if two_clocks:  # both must be timed; each has its own limit
         out["fmax_lut"] = clocks.get(LUT_CLOCK)
         if out["fmax"] is None or out["fmax_lut"] is None:
             out["error"] = f"nextpnr timed {sorted(clocks)}, not both clk_i and {LUT_CLOCK}"
@@ -731,6 +732,13 @@ def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
     return fig
 
 
+def clock_figures(runs: list[dict], fmax_key: str, path_key: str) -> tuple[dict, dict]:
+    """One clock's Fmax statistics over the runs, and the critical path of
+    the run where it is lowest (with its seed)."""
+    worst = min(runs, key=lambda r: r[fmax_key])
+    return fmax_stats([r[fmax_key] for r in runs]), dict(worst[path_key] or {}, seed=worst["seed"])
+
+
 def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict) -> dict:
     by_speed: dict[str, dict] = {}
     by_speed_lut: dict[str, dict] = {}
@@ -741,13 +749,9 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         ok = [r for r in runs if r["speed"] == speed and r.get("fmax") and "error" not in r]
         if not ok:
             continue
-        by_speed[str(speed)] = fmax_stats([r["fmax"] for r in ok])
-        worst = min(ok, key=lambda r: r["fmax"])
-        limits[str(speed)] = dict(worst["critical_path"] or {}, seed=worst["seed"])
+        by_speed[str(speed)], limits[str(speed)] = clock_figures(ok, "fmax", "critical_path")
         if two_clocks:
-            by_speed_lut[str(speed)] = fmax_stats([r["fmax_lut"] for r in ok])
-            worst = min(ok, key=lambda r: r["fmax_lut"])
-            limits_lut[str(speed)] = dict(worst["critical_path_lut"] or {}, seed=worst["seed"])
+            by_speed_lut[str(speed)], limits_lut[str(speed)] = clock_figures(ok, "fmax_lut", "critical_path_lut")
     row = design.row
     u = utilisation(ys, runs)
     summary = {
@@ -1094,15 +1098,14 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
         pnr_jobs, of_design = [], {}
         for d in built:
             base = Path(args.out) / d.name
+            two = d.params.get("CLOCKS", 1) == 2
             for speed in args.speed_list:
                 for seed in args.seed_list:
                     rundir = base / "pnr" / f"speed{speed}_seed{seed}"
-                    two = d.params.get("CLOCKS", 1) == 2
                     job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
                            "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
                            "ripup_patience": ripup_patience(args) or 0,
-                           "lpf": clock_lpf({"clk_i": args.freq, LUT_CLOCK: args.freq_lut}) if two else None,
-                           "freq_lut": args.freq_lut if two else None,
+                           "freq_lut": args.freq_lut if two else None,  # two clocks: run_pnr writes clocks.lpf
                            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
                                                args.router, args.placer, tuple(args.nextpnr_args),
                                                "clocks.lpf" if two else None)}
