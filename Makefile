@@ -346,7 +346,8 @@ else
 endif
 
 # make chip   a whole chip: pluecker_array of CHIP (NDSPxNLUT: units with
-#             MULT18X18D x units with fabric multipliers) at COORD_BITS/DIR_BITS,
+#             MULT18X18D x units with fabric multipliers; NDSPxNLUTxNROM adds
+#             units with block-RAM tables, 6/6 PIPELINE=2) at COORD_BITS/DIR_BITS,
 #             placed and routed on the LFE5U-85F (SEEDS, SPEEDS); the array's
 #             own box tests per second beside the one-unit extrapolation of
 #             out/synth/<C>x<D>/summary.json (make synth first). Results in

@@ -18,12 +18,14 @@
 // flops and rst_i's register on its lane's clock. Lanes are independent
 // streams (rtl/pluecker_array.sv), so nothing crosses between the domains;
 // the chip's box tests per second are N_DSP x Fmax(clk_i) + N_LUT x
-// Fmax(clk_lut_i).
+// Fmax(clk_lut_i). The N_ROM table-multiplier units (the last lanes) need
+// CLOCKS = 1.
 `default_nettype none
 
 module ooc_array_wrapper #(
     parameter int N_DSP = 1,
     parameter int N_LUT = 1,
+    parameter int N_ROM = 0,
     parameter int COORD_BITS = 16,
     parameter int DIR_BITS = 16,
     parameter int TAG_BITS = 16,
@@ -31,7 +33,7 @@ module ooc_array_wrapper #(
     parameter int PIPELINE = 0,
     parameter int RST_STAGES = 0,
     parameter int CLOCKS = 1,  // 1: one clock; 2: the fabric units on clk_lut_i
-    localparam int N = N_DSP + N_LUT
+    localparam int N = N_DSP + N_LUT + N_ROM
 ) (
     input wire clk_i,
     // verilator lint_off UNUSEDSIGNAL
@@ -66,6 +68,9 @@ module ooc_array_wrapper #(
   end
   if (CLOCKS == 2 && (N_DSP < 1 || N_LUT < 1)) begin : g_bad_split
     $error("ooc_array_wrapper: CLOCKS = 2 needs DSP and fabric units (N_DSP, N_LUT >= 1)");
+  end
+  if (CLOCKS == 2 && N_ROM != 0) begin : g_bad_rom_clocks
+    $error("ooc_array_wrapper: CLOCKS = 2 takes no table-multiplier units (N_ROM = 0)");
   end
 
   // The lanes' registered ports (each lane's flops in g_lane[l]).
@@ -155,6 +160,7 @@ module ooc_array_wrapper #(
   pluecker_array #(
       .N_DSP(N_DSP),
       .N_LUT((CLOCKS == 2) ? 0 : N_LUT),
+      .N_ROM(N_ROM),
       .COORD_BITS(COORD_BITS),
       .DIR_BITS(DIR_BITS),
       .TAG_BITS(TAG_BITS),

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// An array of pluecker_intersector units: N = N_DSP + N_LUT lanes, each a
-// complete intersector stream.
+// An array of pluecker_intersector units: N = N_DSP + N_LUT + N_ROM lanes,
+// each a complete intersector stream.
 //
 // Interface. A valid/ready stream carries at most one query per clock and a
 // unit takes one query per clock, so N units need N queries per clock: the
@@ -15,11 +15,14 @@
 //
 // Units. Lanes 0..N_DSP-1 use MUL_STYLE "dsp" (on ECP5 twelve MULT18X18D a
 // unit up to 17/17 bits; six at 6/6 with PIPELINE = 2, two products a
-// block, rtl/pluecker_mul_pair.sv), lanes N_DSP..N-1 MUL_STYLE "lut" (multipliers in
-// fabric, up to 17/17 bits), so one chip can fill its DSP blocks and its
-// LUTs at once: a mixed array. Every unit has the same COORD_BITS,
-// DIR_BITS, TAG_BITS, CONSERVATIVE and PIPELINE, hence one query encoding;
-// up to 17/17 bits both styles have the same LATENCY (the port contract's).
+// block, rtl/pluecker_mul_pair.sv), the next N_LUT lanes MUL_STYLE "lut"
+// (multipliers in fabric, up to 17/17 bits) and the last N_ROM lanes
+// MUL_STYLE "rom" (each product looked up in a block RAM, twelve DP16KD a
+// unit; 6/6 bits with PIPELINE = 2, rtl/pluecker_mul_rom.sv), so one chip
+// can fill its DSP blocks, its block RAM and its LUTs at once: a mixed
+// array. Every unit has the same COORD_BITS, DIR_BITS, TAG_BITS,
+// CONSERVATIVE and PIPELINE, hence one query encoding; where several styles
+// take a configuration they have the same LATENCY (the port contract's).
 //
 // Each lane keeps every rule of the intersector's ports: in_ready_o and
 // out_valid_o come from flops, results in input order, nothing accepted
@@ -43,6 +46,7 @@
 module pluecker_array #(
     parameter int N_DSP = 1,  // units with DSP multipliers (lanes 0..N_DSP-1)
     parameter int N_LUT = 1,  // units with fabric multipliers (the next lanes)
+    parameter int N_ROM = 0,  // units with block-RAM table multipliers (the last lanes)
     parameter int COORD_BITS = 16,
     parameter int DIR_BITS = 16,
     parameter int TAG_BITS = 16,
@@ -50,7 +54,7 @@ module pluecker_array #(
     parameter int PIPELINE = 0,
     parameter int RST_STAGES = 0,  // reset flops per unit in front of its rst_i (0..8)
     // Lanes in all (not to be overridden).
-    localparam int N = N_DSP + N_LUT
+    localparam int N = N_DSP + N_LUT + N_ROM
 ) (
     input wire clk_i,
     input wire rst_i,
@@ -73,11 +77,11 @@ module pluecker_array #(
 );
   // An upper bound on the lanes (an LFE5U-85F holds well under 100 units).
   localparam int MAX_UNITS = 256;
-  if (N_DSP < 0 || N_LUT < 0) begin : g_bad_counts
-    $error("pluecker_array: parameters N_DSP and N_LUT must not be negative");
+  if (N_DSP < 0 || N_LUT < 0 || N_ROM < 0) begin : g_bad_counts
+    $error("pluecker_array: parameters N_DSP, N_LUT and N_ROM must not be negative");
   end
   if (N < 1 || N > MAX_UNITS) begin : g_bad_n
-    $error("pluecker_array: N_DSP + N_LUT must be 1..256");
+    $error("pluecker_array: N_DSP + N_LUT + N_ROM must be 1..256");
   end
 
   if (RST_STAGES < 0 || RST_STAGES > 8) begin : g_bad_rst_stages
@@ -88,7 +92,7 @@ module pluecker_array #(
   localparam int D3 = 3 * DIR_BITS;
 
   for (genvar l = 0; l < N; l++) begin : g_unit
-    localparam logic [31:0] STYLE = (l < N_DSP) ? 32'("dsp") : 32'("lut");
+    localparam logic [31:0] STYLE = (l < N_DSP) ? 32'("dsp") : (l < N_DSP + N_LUT) ? 32'("lut") : 32'("rom");
     wire unused_strict;
     wire unit_rst;
     // One kept chain per unit (rtl/pluecker_rst_chain.sv).

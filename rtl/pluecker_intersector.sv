@@ -46,8 +46,11 @@
 //       output register is the S2 register; or, by MUL_STYLE, the fabric
 //       multiplier pluecker_mul_lut with the same two register stages; at
 //       6/6 with "dsp" and PIPELINE = 2 one MULT18X18D per difference does
-//       both its products, pluecker_mul_pair); in parallel |A_i| + |B_j| (in
-//       ones' complement form), origin test B_i >= 0, end test
+//       both its products, pluecker_mul_pair; with "rom" each product is
+//       looked up in a block RAM, pluecker_mul_rom, whose address and
+//       output registers are the S1 and S2 registers); in parallel
+//       |A_i| + |B_j| (in ones' complement form), origin test B_i >= 0,
+//       end test
 //   S2x PIPELINE + MUL_ADD stages: PIPELINE (0..2) for the multipliers'
 //       extra registers (1: the MULT18X18D pipeline register, in fabric the
 //       register across pluecker_mul_lut's adder tree; 2: also a fabric
@@ -97,8 +100,11 @@ module pluecker_intersector #(
     parameter int TAG_BITS = 16,
     parameter bit CONSERVATIVE = 1,  // 1: conservative margin (never misses); 0: 'nearest' (no margin)
     // Multipliers: "dsp" = pluecker_mul (on ECP5 MULT18X18D blocks),
-    // "lut" = pluecker_mul_lut (fabric only), "auto" = "lut" when both
-    // COORD_BITS and DIR_BITS are at most MUL_LUT_MAX_BITS, else "dsp".
+    // "lut" = pluecker_mul_lut (fabric only), "rom" = pluecker_mul_rom
+    // (block-RAM tables, one DP16KD a product; PIPELINE = 2 and
+    // COORD_BITS + 1 + ceil(DIR_BITS/2) <= 10, i.e. 6/6), "auto" = "lut"
+    // when both COORD_BITS and DIR_BITS are at most MUL_LUT_MAX_BITS, else
+    // "dsp".
     parameter MUL_STYLE = "auto",
     // 1: one more register in every multiplier (its PIPELINE: the
     // MULT18X18D pipeline register; in fabric a register across the middle
@@ -160,9 +166,9 @@ module pluecker_intersector #(
   // characters, without width warnings).
   localparam logic [31:0] MUL_STYLE_S = 32'(MUL_STYLE);
   localparam bit MUL_STYLE_OK = MUL_STYLE_S == 32'("auto") || MUL_STYLE_S == 32'("dsp") ||
-      MUL_STYLE_S == 32'("lut");
+      MUL_STYLE_S == 32'("lut") || MUL_STYLE_S == 32'("rom");
   if (!MUL_STYLE_OK) begin : g_bad_mul_style
-    $error("pluecker_intersector: parameter MUL_STYLE must be auto, dsp or lut");
+    $error("pluecker_intersector: parameter MUL_STYLE must be auto, dsp, lut or rom");
   end
 
   // Pairs (i, j), i != j, of the six edge tests, k = 0..5:
@@ -221,15 +227,27 @@ module pluecker_intersector #(
     $error("pluecker_intersector: MUL_STYLE \"lut\" supports COORD_BITS and DIR_BITS up to 17");
   end
 
+  // Table multipliers (MUL_STYLE "rom", rtl/pluecker_mul_rom.sv): one
+  // DP16KD a product, both read ports of a table t[{x, a}] = a*x with x a
+  // half of D_i; the address takes WA + ceil(D/2) bits of a 1K x 18 port.
+  localparam bit MUL_ROM = MUL_STYLE_S == 32'("rom");
+  localparam int ROM_ADDRESS_BITS = pluecker_contract_pkg::ROM_ADDRESS_BITS;
+  localparam bit ROM_OK = !MUL_ROM || (PIPELINE == 2 && WA + (D + 1) / 2 <= ROM_ADDRESS_BITS);
+  if (!ROM_OK) begin : g_bad_rom
+    $error("pluecker_intersector: MUL_STYLE \"rom\" needs PIPELINE = 2 and COORD_BITS + 1 + ceil(DIR_BITS/2) <= 10");
+  end
+  // DP16KD of one unit's multipliers (the port contract's dp16kd).
+  localparam int N_DP16KD = MUL_ROM ? 12 : 0;
+
   // Paired products: with DSP multipliers, PIPELINE = 2 and
   // C + 2 D <= DSP_OPERAND_BITS (6/6 bits) each MULT18X18D does the two
   // products of one difference (A_i by D_j and D_k, B_j by D_i and D_k;
   // rtl/pluecker_mul_pair.sv): six blocks a unit instead of twelve, same
   // LATENCY.
-  localparam bit MUL_PAIR = !MUL_LUT && PIPELINE == 2 && C + 2 * D <= DSP_OPERAND_BITS;
+  localparam bit MUL_PAIR = !MUL_LUT && !MUL_ROM && PIPELINE == 2 && C + 2 * D <= DSP_OPERAND_BITS;
   // MULT18X18D of one unit (the port contract's mult18x18d).
-  localparam int N_MULT18X18D = MUL_LUT ? 0 : MUL_PAIR ? 6 : 12 * (1 + ((WA > DSP_OPERAND_BITS) ? 1 : 0)) *
-      (1 + ((WDS > DSP_OPERAND_BITS) ? 1 : 0));
+  localparam int N_MULT18X18D = (MUL_LUT || MUL_ROM) ? 0 : MUL_PAIR ? 6 :
+      12 * (1 + ((WA > DSP_OPERAND_BITS) ? 1 : 0)) * (1 + ((WDS > DSP_OPERAND_BITS) ? 1 : 0));
 
   // S2x stages between S2 and S3: the multipliers' pipeline register and
   // their adder stages.
@@ -249,7 +267,7 @@ module pluecker_intersector #(
   // The port contract's row for this configuration (checked only when every
   // parameter is valid, so that a bad one gets its own message alone).
   localparam bit PARAMS_OK = COORD_BITS_OK && DIR_BITS_OK && TAG_BITS_OK && PIPELINE_OK && MUL_STYLE_OK &&
-      LUT_WIDTH_OK && TERNARY_OK;
+      LUT_WIDTH_OK && ROM_OK && TERNARY_OK;
   localparam int CONTRACT_CLASS = pluecker_contract_pkg::contract_class(COORD_BITS, DIR_BITS, MUL_STYLE_S, PIPELINE);
   if (PARAMS_OK) begin : g_contract
     if (CONTRACT_CLASS < 0) begin : g_no_class
@@ -269,6 +287,12 @@ module pluecker_intersector #(
       end
       if (N_MULT18X18D != pluecker_contract_pkg::contract_mult18x18d(CONTRACT_CLASS)) begin : g_bad_mult18x18d
         $error("pluecker_intersector: the MULT18X18D count differs from the port contract (pluecker_contract_pkg)");
+      end
+      if (MUL_ROM != pluecker_contract_pkg::contract_mul_rom(CONTRACT_CLASS)) begin : g_bad_mul_rom
+        $error("pluecker_intersector: the table multipliers differ from the port contract (pluecker_contract_pkg)");
+      end
+      if (N_DP16KD != pluecker_contract_pkg::contract_dp16kd(CONTRACT_CLASS)) begin : g_bad_dp16kd
+        $error("pluecker_intersector: the DP16KD count differs from the port contract (pluecker_contract_pkg)");
       end
     end
   end
@@ -465,14 +489,26 @@ module pluecker_intersector #(
     end
   end
 
+  if (MUL_ROM) begin : g_rom
+    // Pair k's two products, each from a block-RAM table.
+    for (genvar k = 0; k < 6; k++) begin : g_prod
+      localparam int I = pair_i(k);
+      localparam int J = pair_j(k);
+      pluecker_mul_rom #(.WA(WA), .WU(D)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i(dir0_q[I]), .p_o(pb2_q[k]));
+      pluecker_mul_rom #(.WA(WA), .WU(D)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i(dir0_q[J]), .p_o(pa2_q[k]));
+    end
+  end
+
   for (genvar k = 0; k < 6; k++) begin : g_mul
     localparam int I = pair_i(k);
     localparam int J = pair_j(k);
     // Operands from the S0 registers (a_d, b_d, dir0_q), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
     // Same ports and latency in every style.
-    if (MUL_PAIR) begin : g_paired
-      // The products come from g_pair above.
+    if (MUL_PAIR || MUL_ROM) begin : g_paired
+      // The products come from g_pair or g_rom above.
     end else if (MUL_LUT) begin : g_lut
       pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_b (
           .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb2_q[k]));

@@ -19,11 +19,12 @@ Command line (one answer a line, for shell scripts):
   contract.py row C D [--mul-style S] [--pipeline P]
                                      key=value lines of the configuration's row
                                      (multiplier, mul_add, s2x_stages, latency,
-                                     fifo_depth, mult18x18d); exit 2 if the RTL
-                                     refuses the configuration
+                                     fifo_depth, mult18x18d, dp16kd); exit 2 if
+                                     the RTL refuses the configuration
   contract.py classes                one class a line: coord_lo coord_hi dir_lo
                                      dir_hi mul_style pipeline multiplier mul_add
                                      s2x_stages latency fifo_depth mult18x18d
+                                     dp16kd
   contract.py float UNIT [--mul-dsp M]
                                      key=value lines of a binary32 unit (float
                                      or smits): module, latency, fifo_depth,
@@ -53,7 +54,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract.json"
 FLOAT_CONTRACT_JSON = ROOT / "rtl" / "pluecker_contract_float.json"
-ROW_KEYS = ("multiplier", "mul_add", "s2x_stages", "latency", "fifo_depth", "mult18x18d")
+ROW_KEYS = ("multiplier", "mul_add", "s2x_stages", "latency", "fifo_depth", "mult18x18d", "dp16kd")
 LOCAL_CONTRACT_JSON = ROOT / "rtl" / "pluecker_local_contract.json"
 LOCAL_ROW_KEYS = ("frame_multiplier", "child_multiplier", "frame_mul_add", "child_mul_add", "latency", "fifo_depth",
                   "frame_mult18x18d", "child_mult18x18d")

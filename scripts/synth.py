@@ -93,7 +93,7 @@ TOP = "ooc_wrapper"
 DUT = "pluecker_intersector"
 # LFE5U-85F capacities (nextpnr-ecp5 --85k, report.json "utilization" ->
 # "available"; the same figures as scripts/report_lib.py).
-CAPACITY = {"MULT18X18D": 156, "TRELLIS_COMB": 83640, "TRELLIS_FF": 83640}
+CAPACITY = {"MULT18X18D": 156, "TRELLIS_COMB": 83640, "TRELLIS_FF": 83640, "DP16KD": 208}
 DEVICE_FLAG, DEVICE = "--85k", "LFE5U-85F"
 PACKAGE = "CABGA381"
 MAX_PARALLEL = 2  # Yosys or nextpnr runs at once on this machine (2 cores)
@@ -622,11 +622,11 @@ def utilisation(ys: dict, pnr_runs: list[dict]) -> dict:
 
 def chip_figures(u: dict, fmax: dict, tests_per_clock: int) -> dict:
     """Units per LFE5U-85F (the smallest of the capacity over what one placed
-    unit takes, for MULT18X18D, LUT4 slots and flip-flops) and box tests per
-    second per chip at each speed grade's median Fmax."""
+    unit takes, for MULT18X18D, LUT4 slots, flip-flops and DP16KD block RAM)
+    and box tests per second per chip at each speed grade's median Fmax."""
     placed = u.get("placed", {})
     need = {"MULT18X18D": u.get("MULT18X18D", 0), "TRELLIS_COMB": placed.get("TRELLIS_COMB"),
-            "TRELLIS_FF": placed.get("TRELLIS_FF")}
+            "TRELLIS_FF": placed.get("TRELLIS_FF"), "DP16KD": u.get("DP16KD", 0)}
     limits = {k: CAPACITY[k] // v for k, v in need.items() if v}
     if not placed or not limits:
         return {}
@@ -644,17 +644,19 @@ def array_figures(design: Design, by_speed: dict, out: Path, by_speed_lut: dict 
     one-unit extrapolation of the same widths (out/<C>x<D>[_lut]/summary.json
     of the unit's own run, when there is one): what the array keeps of it."""
     p = design.params
-    n = p["N_DSP"] + p["N_LUT"]
+    n_rom = p.get("N_ROM", 0)
+    n = p["N_DSP"] + p["N_LUT"] + n_rom
     if by_speed_lut is None:
         placed = {sp: round(f["median"] * 1e6 * n) for sp, f in by_speed.items()}
     else:
         placed = {sp: round((f["median"] * p["N_DSP"] + by_speed_lut[sp]["median"] * p["N_LUT"]) * 1e6)
                   for sp, f in by_speed.items() if sp in by_speed_lut}
-    fig = {"units": n, "n_dsp": p["N_DSP"], "n_lut": p["N_LUT"], "box_tests_per_s": placed, "extrapolation": {}}
+    fig = {"units": n, "n_dsp": p["N_DSP"], "n_lut": p["N_LUT"], "n_rom": n_rom, "box_tests_per_s": placed,
+           "extrapolation": {}}
     if by_speed_lut is not None:
         fig["clocks"] = {"clk_i": f"{p['N_DSP']} DSP units", LUT_CLOCK: f"{p['N_LUT']} fabric units"}
     pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
-    counts = {"dsp": p["N_DSP"], "lut": p["N_LUT"]}
+    counts = {"dsp": p["N_DSP"], "lut": p["N_LUT"], "rom": n_rom}
     for style, count in counts.items():
         if not count:
             continue
@@ -667,7 +669,8 @@ def array_figures(design: Design, by_speed: dict, out: Path, by_speed_lut: dict 
         fig["extrapolation"][style] = {"from": str(unit_dir), "units_per_chip": unit.get("units_per_chip"),
                                        "box_tests_per_s_per_chip": unit.get("box_tests_per_s_per_chip", {}),
                                        "fmax_mhz": {sp: f["median"] for sp, f in unit.get("fmax_mhz", {}).items()}}
-    pure = "dsp" if not p["N_LUT"] else "lut" if not p["N_DSP"] else None
+    styles = [st for st, c in counts.items() if c]
+    pure = styles[0] if len(styles) == 1 else None
     if pure in fig["extrapolation"]:  # one style: placed against units_per_chip x one unit's Fmax
         ext = fig["extrapolation"][pure]["box_tests_per_s_per_chip"]
         fig["of_extrapolation"] = {sp: round(v / ext[sp], 3) for sp, v in placed.items() if ext.get(sp)}
@@ -919,45 +922,56 @@ ARRAY_WRAPPER = ROOT / "fpga" / "ooc_array_wrapper.sv"
 MUL_LUT_MAX_BITS = contract.load()["limits"]["mul_lut_max_bits"]  # "auto" is fabric up to here
 
 
-def parse_array(text: str) -> tuple[int, int]:
-    """'DxL': D units with DSP multipliers and L in fabric (pluecker_array)."""
+def parse_array(text: str) -> tuple[int, int, int]:
+    """'DxL[xR]': D units with DSP multipliers, L in fabric and R (default 0)
+    with block-RAM table multipliers (pluecker_array)."""
     try:
-        nd, nl = (int(x) for x in text.lower().split("x"))
+        counts = [int(x) for x in text.lower().split("x")]
+        if len(counts) not in (2, 3):
+            raise ValueError
     except ValueError:
-        raise FlowError(f"--array '{text}': expected NDSPxNLUT, e.g. 13x0 or 1x1") from None
-    if nd < 0 or nl < 0 or nd + nl < 1:
+        raise FlowError(f"--array '{text}': expected NDSPxNLUT[xNROM], e.g. 13x0, 1x1 or 26x0x17") from None
+    nd, nl, nr = counts + [0] * (3 - len(counts))
+    if min(nd, nl, nr) < 0 or nd + nl + nr < 1:
         raise FlowError(f"--array '{text}': at least one unit, no negative count")
-    return nd, nl
+    return nd, nl, nr
 
 
-def array_design(c: int, d: int, nd: int, nl: int, args) -> Design:
-    """pluecker_array of nd DSP and nl fabric units at C/D bits: the port
-    contract's rows of both styles give LATENCY (the same up to 17 bits) and
-    the MULT18X18D count (nd times a DSP unit's)."""
+def array_design(c: int, d: int, nd: int, nl: int, nr: int, args) -> Design:
+    """pluecker_array of nd DSP, nl fabric and nr block-RAM table units at
+    C/D bits: the port contract's rows of the styles give LATENCY (the same
+    wherever several styles take C/D) and the MULT18X18D and DP16KD counts
+    (nd times a DSP unit's, nr times a table unit's)."""
     try:
-        rows = {style: contract.row(c, d, style, args.pipeline) for style, n in (("dsp", nd), ("lut", nl)) if n}
+        rows = {style: contract.row(c, d, style, args.pipeline)
+                for style, n in (("dsp", nd), ("lut", nl), ("rom", nr)) if n}
     except contract.ContractError as e:
         raise FlowError(str(e)) from None
     latencies = {r["latency"] for r in rows.values()}
     if len(latencies) != 1:
-        raise FlowError(f"--array at {c}x{d}: the two multiplier styles have different latencies {latencies}")
+        raise FlowError(f"--array at {c}x{d}: the multiplier styles have different latencies {latencies}")
     any_row = next(iter(rows.values()))
     row = {"latency": any_row["latency"], "fifo_depth": any_row["fifo_depth"],
            "mult18x18d": nd * rows["dsp"]["mult18x18d"] if nd else 0,
-           "multiplier": f"{nd} units with MULT18X18D, {nl} in fabric"}
+           "dp16kd": nr * rows["rom"]["dp16kd"] if nr else 0,
+           "multiplier": f"{nd} units with MULT18X18D, {nl} in fabric"
+           + (f", {nr} with block-RAM tables" if nr else "")}
     if args.clocks == 2 and not (nd and nl):
         raise FlowError(f"--clocks 2 puts the fabric units on a clock of their own: --array {nd}x{nl} "
                         "needs both DSP and fabric units")
-    name = (f"array_{nd}x{nl}_{c}x{d}" + (f"_p{args.pipeline}" if args.pipeline else "")
+    if args.clocks == 2 and nr:
+        raise FlowError(f"--clocks 2 takes no block-RAM table units: --array {nd}x{nl}x{nr}")
+    counts = f"{nd}x{nl}" + (f"x{nr}" if nr else "")
+    name = (f"array_{counts}_{c}x{d}" + (f"_p{args.pipeline}" if args.pipeline else "")
             + ("_clk2" if args.clocks == 2 else ""))
-    params = {"N_DSP": nd, "N_LUT": nl, "COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
+    params = {"N_DSP": nd, "N_LUT": nl, "N_ROM": nr, "COORD_BITS": c, "DIR_BITS": d, "TAG_BITS": args.tag_bits,
               "CONSERVATIVE": args.conservative, "PIPELINE": args.pipeline, "RST_STAGES": args.rst_stages,
               "CLOCKS": args.clocks}
     return Design(name, "ooc_array_wrapper", ARRAY_WRAPPER, "pluecker_array", params, row,
-                  {"config": f"array {nd}x{nl} {c}x{d}" + (" 2 clocks" if args.clocks == 2 else ""),
+                  {"config": f"array {counts} {c}x{d}" + (" 2 clocks" if args.clocks == 2 else ""),
                    "unit": "array", "name": name, "coord_bits": c,
                    "dir_bits": d, "pipeline": args.pipeline, "rst_stages": args.rst_stages, "n_dsp": nd,
-                   "n_lut": nl, "clocks": args.clocks}, tests_per_clock=nd + nl)
+                   "n_lut": nl, "n_rom": nr, "clocks": args.clocks}, tests_per_clock=nd + nl + nr)
 
 
 CASCADE_WRAPPER = ROOT / "fpga" / "ooc_cascade_wrapper.sv"
@@ -1051,6 +1065,11 @@ def synth_one(spec: tuple, args, yosys: str, sources: list[Path]) -> dict:
     if cells.get("MULT18X18D", 0) != design.row["mult18x18d"]:
         raise FlowError(f"{cells.get('MULT18X18D', 0)} MULT18X18D in the netlist, the port contract "
                         f"says {design.row['mult18x18d']}")
+    # Table multipliers' DP16KD: at least the contract's (output FIFOs may
+    # take more with -nolutram).
+    if cells.get("DP16KD", 0) < design.row.get("dp16kd", 0):
+        raise FlowError(f"{cells.get('DP16KD', 0)} DP16KD in the netlist, the port contract's table "
+                        f"multipliers need {design.row['dp16kd']}")
     if args.floorplan == "dsp" and cells.get("MULT18X18D", 0):
         try:
             ys["floorplan"] = floorplan.pin_units(Path(args.out) / design.name / "netlist.json", design.top)
@@ -1238,9 +1257,9 @@ def main(argv: list[str]) -> int:
         if args.cascade:
             specs = [("cascade", *parse_cascade(args.cascade))]
         elif args.array:
-            nd, nl = parse_array(args.array)
+            nd, nl, nr = parse_array(args.array)
             pairs = parse_widths(args.widths) if args.widths else [(args.coord_bits, args.dir_bits)]
-            specs = [("array", c, d, nd, nl) for c, d in pairs]
+            specs = [("array", c, d, nd, nl, nr) for c, d in pairs]
         elif args.local:
             specs = [("local", k, d, g) for k, d, g in parse_local_widths(args.local_widths)]
         elif args.unit != "fixed":

@@ -114,7 +114,7 @@ py::dict rtl_ports(const FixedRay& r, const FixedBox& b, const FixedFormat& f) {
 MulStyle mul_style_arg(const py::object& style) {
     if (py::isinstance<py::str>(style)) return parse_mul_style(style.cast<std::string>());
     if (py::isinstance<MulStyle>(style)) return style.cast<MulStyle>();
-    throw InputError("mul_style must be a MulStyle or one of 'auto', 'dsp', 'lut'");
+    throw InputError("mul_style must be a MulStyle or one of 'auto', 'dsp', 'lut', 'rom'");
 }
 
 PortContract make_contract(int coord_bits, int dir_bits, int tag_bits, bool conservative, const py::object& mul_style,
@@ -135,12 +135,13 @@ py::dict class_dict(const ContractClass& k) {
     d["dir_bits"] = py::make_tuple(k.dir_lo, k.dir_hi);
     d["mul_style"] = mul_style_name(k.mul_style);
     d["pipeline"] = k.pipeline;
-    d["multiplier"] = k.fabric ? "lut" : "dsp";
+    d["multiplier"] = k.rom ? "rom" : k.fabric ? "lut" : "dsp";
     d["mul_add"] = k.mul_add;
     d["s2x_stages"] = k.s2x_stages;
     d["latency"] = k.latency;
     d["fifo_depth"] = k.fifo_depth;
     d["mult18x18d"] = k.dsp_blocks;
+    d["dp16kd"] = k.rom_blocks;
     return d;
 }
 
@@ -580,7 +581,8 @@ PYBIND11_MODULE(pluecker_py, m) {
     py::enum_<MulStyle>(m, "MulStyle")
         .value("Auto", MulStyle::Auto)
         .value("Dsp", MulStyle::Dsp)
-        .value("Lut", MulStyle::Lut);
+        .value("Lut", MulStyle::Lut)
+        .value("Rom", MulStyle::Rom);
     m.def("parse_mul_style", &parse_mul_style, py::arg("name"));
     m.def("mul_style_name", &mul_style_name, py::arg("style"));
 
@@ -620,6 +622,8 @@ PYBIND11_MODULE(pluecker_py, m) {
         .def_property_readonly("latency", &PortContract::latency)
         .def_property_readonly("fifo_depth", &PortContract::fifo_depth)
         .def_property_readonly("dsp_blocks", &PortContract::dsp_blocks, "MULT18X18D of one intersector")
+        .def_property_readonly("rom_multipliers", &PortContract::rom_multipliers, "MUL_STYLE rom (pluecker_mul_rom)")
+        .def_property_readonly("rom_blocks", &PortContract::rom_blocks, "DP16KD of one intersector's multipliers")
         .def_property_readonly("ports", &PortContract::ports)
         .def("port", &PortContract::port, py::arg("name"), py::return_value_policy::copy)
         .def("rtl_ports", [](const PortContract& c, const FixedRay& r, const FixedBox& b) {

@@ -89,7 +89,20 @@ TEST(Contract, MultiplierStyles) {
     // The style never changes the latency.
     for (MulStyle s : {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut})
         for (int p = 0; p <= 1; ++p) EXPECT_EQ(contract(8, 12, s, p).latency(), 6 + p);
+    // Block-RAM tables (rtl/pluecker_mul_rom.sv): 6/6 with PIPELINE 2 only,
+    // twelve DP16KD and no MULT18X18D, the latency of the other styles.
+    const PortContract rom = contract(6, 6, MulStyle::Rom, 2);
+    EXPECT_TRUE(rom.rom_multipliers());
+    EXPECT_FALSE(rom.fabric_multipliers());
+    EXPECT_FALSE(rom.paired_products());
+    EXPECT_EQ(rom.dsp_blocks(), 0);
+    EXPECT_EQ(rom.rom_blocks(), 12);
+    EXPECT_EQ(rom.latency(), contract(6, 6, MulStyle::Dsp, 2).latency());
+    EXPECT_EQ(contract(6, 6, MulStyle::Dsp, 2).rom_blocks(), 0);
+    EXPECT_EQ(contract(6, 6, MulStyle::Lut, 2).rom_blocks(), 0);
     EXPECT_EQ(parse_mul_style("lut"), MulStyle::Lut);
+    EXPECT_EQ(parse_mul_style("rom"), MulStyle::Rom);
+    EXPECT_STREQ(mul_style_name(MulStyle::Rom), "rom");
     EXPECT_STREQ(mul_style_name(MulStyle::Dsp), "dsp");
     EXPECT_THROW(parse_mul_style("fast"), InputError);
 }
@@ -124,6 +137,18 @@ TEST(Contract, RefusesWhatTheRtlRefuses) {
     c.coord_bits = 17;
     c.dir_bits = 18;
     refuses(c, "MUL_STYLE lut");
+    c = RtlConfig{};
+    c.mul_style = MulStyle::Rom;
+    c.coord_bits = c.dir_bits = 6;
+    c.pipeline = 1;
+    refuses(c, "MUL_STYLE rom needs PIPELINE = 2 (PIPELINE = 1)");
+    c.pipeline = 2;
+    EXPECT_NO_THROW(validate_rtl_config(c));
+    c.dir_bits = 7;
+    refuses(c, "MUL_STYLE rom needs COORD_BITS + 1 + ceil(DIR_BITS / 2) <= 10");
+    c.dir_bits = 6;
+    c.coord_bits = 7;
+    refuses(c, "(COORD_BITS = 7, DIR_BITS = 6)");
     EXPECT_NO_THROW(validate_rtl_config(RtlConfig{}));
 }
 
@@ -259,7 +284,7 @@ TEST(Contract, ClassesPartitionEveryConfiguration) {
     std::size_t valid = 0;
     for (int c = ContractLimits::kMinBits; c <= ContractLimits::kMaxBits; ++c)
         for (int d = ContractLimits::kMinBits; d <= ContractLimits::kMaxBits; ++d)
-            for (MulStyle s : {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut})
+            for (MulStyle s : {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut, MulStyle::Rom})
                 for (int p = 0; p <= ContractLimits::kMaxPipeline; ++p) {
                     SCOPED_TRACE(std::to_string(c) + "/" + std::to_string(d) + " " + mul_style_name(s) + " " +
                                  std::to_string(p));
@@ -295,13 +320,16 @@ TEST(Contract, ClassesPartitionEveryConfiguration) {
                     EXPECT_EQ(in->latency, pc.latency());
                     EXPECT_EQ(in->fifo_depth, pc.fifo_depth());
                     EXPECT_EQ(in->dsp_blocks, pc.dsp_blocks());
+                    EXPECT_EQ(in->rom, pc.rom_multipliers());
+                    EXPECT_EQ(in->rom_blocks, pc.rom_blocks());
                 }
-    // auto and dsp: every width pair; lut: both widths up to 17; three PIPELINE values.
-    EXPECT_EQ(valid, std::size_t{3} * (19 * 19 * 2 + 12 * 12));
-    // Widths split at 7 (paired products at 6/6), 10 (auto's fabric
-    // threshold) and 18 (DSP operand split): auto and dsp 4 x 4 runs, lut
-    // 3 x 3, for each PIPELINE.
-    EXPECT_EQ(classes.size(), std::size_t{3} * (16 + 16 + 9));
+    // auto and dsp: every width pair; lut: both widths up to 17; three
+    // PIPELINE values; rom: 6/6 at PIPELINE 2.
+    EXPECT_EQ(valid, std::size_t{3} * (19 * 19 * 2 + 12 * 12) + 1);
+    // Widths split at 7 (paired products and tables at 6/6), 10 (auto's
+    // fabric threshold) and 18 (DSP operand split): auto and dsp 4 x 4
+    // runs, lut 3 x 3, for each PIPELINE; rom one class.
+    EXPECT_EQ(classes.size(), std::size_t{3} * (16 + 16 + 9) + 1);
 }
 
 // The AXI4-Stream wrapper's tdata: the payload ports back to back from bit

@@ -21,7 +21,7 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "scripts"))
 import contract  # noqa: E402  (scripts/contract.py)
 
-STYLES = ("auto", "dsp", "lut")
+STYLES = ("auto", "dsp", "lut", "rom")
 
 
 def test_limits_agree():
@@ -52,7 +52,7 @@ def test_every_configuration_has_the_row_of_the_table():
     for c in range(lo, hi + 1):
         for d in range(lo, hi + 1):
             for style in STYLES:
-                for p in (0, 1):
+                for p in (0, 1, 2):
                     try:
                         row = contract.row(c, d, style, p)
                     except contract.ContractError:
@@ -60,11 +60,12 @@ def test_every_configuration_has_the_row_of_the_table():
                             pp.PortContract(c, d, mul_style=style, pipeline=p)
                         continue
                     pc = pp.PortContract(c, d, mul_style=style, pipeline=p)
-                    got = ("lut" if pc.fabric_multipliers else "dsp", pc.mul_add, pc.s2x_stages, pc.latency,
-                           pc.fifo_depth, pc.dsp_blocks)
+                    kind = "rom" if pc.rom_multipliers else "lut" if pc.fabric_multipliers else "dsp"
+                    got = (kind, pc.mul_add, pc.s2x_stages, pc.latency, pc.fifo_depth, pc.dsp_blocks, pc.rom_blocks)
                     assert got == tuple(row[k] for k in contract.ROW_KEYS), (c, d, style, p)
                     n += 1
-    assert n == 2 * (19 * 19 * 2 + 12 * 12)
+    # auto, dsp: every pair; lut: up to 17 bits; rom: 6/6 at PIPELINE 2.
+    assert n == 3 * (19 * 19 * 2 + 12 * 12) + 1
 
 
 @pytest.mark.parametrize("kwargs, part", [
@@ -74,6 +75,8 @@ def test_every_configuration_has_the_row_of_the_table():
     ({"pipeline": 3}, "PIPELINE = 3"),
     ({"mul_style": "fast"}, "fast"),
     ({"coord_bits": 18, "mul_style": "lut"}, "MUL_STYLE lut"),
+    ({"coord_bits": 6, "dir_bits": 6, "mul_style": "rom", "pipeline": 1}, "MUL_STYLE rom needs PIPELINE = 2"),
+    ({"coord_bits": 6, "dir_bits": 8, "mul_style": "rom", "pipeline": 2}, "one 1K x 18 block-RAM port"),
 ])
 def test_contract_refuses(kwargs, part):
     with pytest.raises(pp.InputError, match=part):

@@ -238,6 +238,31 @@ def test_array_two_clocks_smoke(tmp_path):
     assert "limit (fabric units' clock)" in res.stdout, res.stdout
 
 
+def test_array_rom_smoke(tmp_path):
+    """One unit with block-RAM table multipliers (--array 0x0x1 at 6/6,
+    PIPELINE 2) through the flow (speed 8, one seed): its twelve DP16KD
+    instances (REGMODE OUTREG, tables from the RTL) placed and routed, no
+    MULT18X18D, the array's box tests per second."""
+    reason = _tools_missing()
+    if reason:
+        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--array", "0x0x1", "--coord-bits", "6",
+                          "--dir-bits", "6", "--pipeline", "2", "--smoke", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --array 0x0x1 failed:\n{res.stdout}\n{res.stderr}"
+    s = json.loads((tmp_path / "array_0x0x1_6x6_p2" / "summary.json").read_text())
+    u = s["utilisation"]
+    import contract  # scripts/contract.py
+    assert u["DP16KD"] == contract.row(6, 6, "rom", 2)["dp16kd"] == 12, u
+    assert u["placed"]["DP16KD"] == 12 and u["MULT18X18D"] == 0, u
+    assert (s["n_dsp"], s["n_lut"], s["n_rom"]) == (0, 0, 1) and s["array"]["units"] == 1
+    (run,) = s["runs"]
+    assert "error" not in run and run["fmax"] > 0, run
+    net = json.loads((tmp_path / "array_0x0x1_6x6_p2" / "netlist.json").read_text())
+    blocks = [c for m in net["modules"].values() for c in m["cells"].values() if c["type"] == "DP16KD"]
+    assert len(blocks) == 12 and all(b["parameters"]["REGMODE_A"] == "OUTREG" for b in blocks)
+
+
 def test_two_clocks_refused(tmp_path, capsys):
     """--clocks 2 only for a mixed --array; --freq-lut only with it (no tools)."""
     for argv, why in ((["--clocks", "2"], "--clocks 2 is for a mixed --array"),
@@ -248,6 +273,13 @@ def test_two_clocks_refused(tmp_path, capsys):
         assert why in capsys.readouterr().err
     assert synth.main(["--array", "2x0", "--clocks", "2", "--no-pnr", "--out", str(tmp_path)]) == 1
     assert "--array 2x0 needs both DSP and fabric units" in capsys.readouterr().err
+    assert synth.main(["--array", "1x1x1", "--clocks", "2", "--no-pnr", "--coord-bits", "6", "--dir-bits", "6",
+                       "--pipeline", "2", "--out", str(tmp_path)]) == 1
+    assert "--clocks 2 takes no block-RAM table units" in capsys.readouterr().err
+    for bad in ("1x1x1x1", "1x-1", "0x0x0"):
+        with pytest.raises(synth.FlowError, match=f"--array '{bad}'"):
+            synth.parse_array(bad)
+    assert synth.parse_array("26x0x17") == (26, 0, 17) and synth.parse_array("13x0") == (13, 0, 0)
     assert synth.clock_lpf({"clk_i": 250.0, "clk_lut_i": 187.5}) == (
         'FREQUENCY PORT "clk_i" 250 MHZ;\nFREQUENCY PORT "clk_lut_i" 187.5 MHZ;\n')
 
@@ -286,6 +318,14 @@ def test_array_figures_same_units_alone(tmp_path):
     assert fig["box_tests_per_s"] == {"8": 630_000_000}
     assert fig["of_same_units_alone"] == {"8": 0.9}
     assert fig["clocks"] == {"clk_i": "2 DSP units", "clk_lut_i": "3 fabric units"}
+    # Table units beside them: 2 x 200 + 3 x 100 + 1 x 300 MHz alone, 6
+    # units placed at 140 MHz: 84 %.
+    unit("16x16_rom_p1", 300.0, 16)
+    mixed = synth.Design("array_2x3x1_16x16_p1", "ooc_array_wrapper", Path("w.sv"), "pluecker_array",
+                         dict(params, N_ROM=1), {})
+    fig = synth.array_figures(mixed, {"8": {"median": 140.0}}, tmp_path)
+    assert fig["units"] == 6 and fig["n_rom"] == 1 and fig["box_tests_per_s"] == {"8": 840_000_000}
+    assert fig["same_units_alone"] == {"8": 1_000_000_000} and fig["of_same_units_alone"] == {"8": 0.84}
 
 
 def test_cascade_chip_figures_same_units_alone(tmp_path):

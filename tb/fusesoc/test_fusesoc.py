@@ -83,6 +83,8 @@ def test_lint_targets(tmp_path):
                          ("pluecker:ip:intersector", ["--COORD_BITS=6", "--DIR_BITS=6", "--PIPELINE=2",
                                                       "--MUL_STYLE=dsp"]),  # two products a block
                          ("pluecker:ip:array", ["--N_DSP=2", "--N_LUT=1"]),
+                         ("pluecker:ip:array", ["--N_DSP=1", "--N_LUT=1", "--N_ROM=1", "--COORD_BITS=6",
+                                                "--DIR_BITS=6", "--PIPELINE=2"]),  # block-RAM tables
                          ("pluecker:ip:intersector", ["--TERNARY=1"]),
                          ("pluecker:ip:cascade", ["--N_NARROW=3", "--NARROW_COORD_BITS=8", "--NARROW_DIR_BITS=8"])]:
         r = fusesoc(["run", "--target", "lint", core, *params], tmp_path / "lint")

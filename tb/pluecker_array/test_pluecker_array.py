@@ -1,6 +1,6 @@
 # SPDX-License-Identifier: MIT
 """cocotb bench for rtl/pluecker_array.sv: small arrays (two to four units,
-DSP and fabric lanes mixed) against the golden model.
+DSP, fabric and block-RAM table lanes mixed) against the golden model.
 
 Every lane gets its own stimulus, its own idle and back-pressure generators
 and its own in-order scoreboard (pluecker_tb.stream.InOrderScoreboard):
@@ -52,7 +52,7 @@ class ArrayBench:
 
     def __init__(self, dut, seed: int, idle: bool, backpressure: bool):
         self.dut = dut
-        self.n = int(dut.N_DSP.value) + int(dut.N_LUT.value)
+        self.n = int(dut.N_DSP.value) + int(dut.N_LUT.value) + int(dut.N_ROM.value)
         self.tag_bits = int(dut.TAG_BITS.value)
         self.coord_bits, self.dir_bits = int(dut.COORD_BITS.value), int(dut.DIR_BITS.value)
         self.conservative = bool(int(dut.CONSERVATIVE.value))
@@ -190,8 +190,9 @@ async def _start(dut, seed: int, idle: bool, backpressure: bool) -> ArrayBench:
         await RisingEdge(dut.clk_i)
     await FallingEdge(dut.clk_i)
     dut.rst_i.value = 0
-    dut._log.info("array: N_DSP=%d N_LUT=%d COORD_BITS=%d DIR_BITS=%d CONSERVATIVE=%d RST_STAGES=%d, seed %d",
-                  int(dut.N_DSP.value), int(dut.N_LUT.value), bench.coord_bits, bench.dir_bits, bench.conservative,
+    dut._log.info("array: N_DSP=%d N_LUT=%d N_ROM=%d COORD_BITS=%d DIR_BITS=%d CONSERVATIVE=%d RST_STAGES=%d, "
+                  "seed %d", int(dut.N_DSP.value), int(dut.N_LUT.value), int(dut.N_ROM.value), bench.coord_bits,
+                  bench.dir_bits, bench.conservative,
                   bench.rst_stages, seed)
     return bench
 
@@ -252,38 +253,41 @@ if cocotb is not None:
 # pytest side: one Verilator build per array
 # ---------------------------------------------------------------------------
 
-# (N_DSP, N_LUT, COORD_BITS, DIR_BITS, CONSERVATIVE, PIPELINE, RST_STAGES,
-# ecp5): a mixed pair at 16/16 (the DSP lane on the MULT18X18D model), three
-# fabric lanes at 8/8, a mixed four with the multipliers' extra
-# register and a two-stage reset tree, and the mixed 6/6 chip's lanes
-# (PIPELINE = 2: DSP lanes with two products per MULT18X18D model).
+# (N_DSP, N_LUT, N_ROM, COORD_BITS, DIR_BITS, CONSERVATIVE, PIPELINE,
+# RST_STAGES, ecp5): a mixed pair at 16/16 (the DSP lane on the MULT18X18D
+# model), three fabric lanes at 8/8, a mixed four with the multipliers'
+# extra register and a two-stage reset tree, and the mixed 6/6 chip's
+# lanes (PIPELINE = 2: DSP lanes with two products per MULT18X18D model,
+# table lanes on the DP16KD model).
 CONFIGS = [
-    (1, 1, 16, 16, 1, 0, 0, True),
-    (0, 3, 8, 8, 0, 0, 0, False),
-    (2, 2, 10, 12, 1, 1, 2, False),
-    (2, 1, 6, 6, 1, 2, 1, True),
+    (1, 1, 0, 16, 16, 1, 0, 0, True),
+    (0, 3, 0, 8, 8, 0, 0, 0, False),
+    (2, 2, 0, 10, 12, 1, 1, 2, False),
+    (2, 1, 1, 6, 6, 1, 2, 1, True),
 ]
 
 
-def _name(nd, nl, c, d, cons, pipe, rst, ecp5) -> str:
-    return (f"d{nd}_l{nl}_c{c}_d{d}_{'cons' if cons else 'near'}{f'_p{pipe}' if pipe else ''}"
-            f"{f'_r{rst}' if rst else ''}{'_ecp5' if ecp5 else ''}")
+def _name(nd, nl, nr, c, d, cons, pipe, rst, ecp5) -> str:
+    return (f"d{nd}_l{nl}{f'_t{nr}' if nr else ''}_c{c}_d{d}_{'cons' if cons else 'near'}"
+            f"{f'_p{pipe}' if pipe else ''}{f'_r{rst}' if rst else ''}{'_ecp5' if ecp5 else ''}")
 
 
-@pytest.mark.parametrize("n_dsp,n_lut,coord_bits,dir_bits,conservative,pipeline,rst_stages,ecp5", CONFIGS,
+@pytest.mark.parametrize("n_dsp,n_lut,n_rom,coord_bits,dir_bits,conservative,pipeline,rst_stages,ecp5", CONFIGS,
                          ids=[_name(*c) for c in CONFIGS])
-def test_pluecker_array(n_dsp, n_lut, coord_bits, dir_bits, conservative, pipeline, rst_stages, ecp5) -> None:
+def test_pluecker_array(n_dsp, n_lut, n_rom, coord_bits, dir_bits, conservative, pipeline, rst_stages,
+                        ecp5) -> None:
     from pluecker_tb import ecp5 as ecp5_models
     from pluecker_tb.runner import VERILATOR_RTL_ARGS, Build, need_model, rtl_sources
 
     need_model()
-    parameters = {"N_DSP": n_dsp, "N_LUT": n_lut, "COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 8,
-                  "CONSERVATIVE": conservative, "PIPELINE": pipeline, "RST_STAGES": rst_stages}
+    parameters = {"N_DSP": n_dsp, "N_LUT": n_lut, "N_ROM": n_rom, "COORD_BITS": coord_bits, "DIR_BITS": dir_bits,
+                  "TAG_BITS": 8, "CONSERVATIVE": conservative, "PIPELINE": pipeline, "RST_STAGES": rst_stages}
     sources, defines = rtl_sources(), {"ASSERT_ON": 1}
     if ecp5:
         sources += ecp5_models.model_sources()
         defines["PLUECKER_ECP5"] = 1
-    build = Build("array_" + _name(n_dsp, n_lut, coord_bits, dir_bits, conservative, pipeline, rst_stages, ecp5))
+    build = Build("array_" + _name(n_dsp, n_lut, n_rom, coord_bits, dir_bits, conservative, pipeline, rst_stages,
+                                   ecp5))
     build.build(sources=sources, hdl_toplevel=TOPLEVEL, parameters=parameters, defines=defines,
                 build_args=VERILATOR_RTL_ARGS)
     build.test("test_pluecker_array")

@@ -168,7 +168,10 @@ if cocotb is not None:
 # (simulated with the model in tb/pluecker_tb/hdl/, see pluecker_tb.ecp5),
 # one per product up to 17 bits, split into partial products above; at
 # 6/6 with PIPELINE = 2 one per difference for both its products
-# (rtl/pluecker_mul_pair.sv).
+# (rtl/pluecker_mul_pair.sv); "rom": MUL_STYLE "rom" (6/6, PIPELINE = 2:
+# every product from a block-RAM table, rtl/pluecker_mul_rom.sv) on its
+# generic path, "rom-ecp5" the same with PLUECKER_ECP5 defined, i.e. the
+# DP16KD instances of the FPGA build (the model in tb/pluecker_tb/hdl/).
 #
 # (COORD_BITS, DIR_BITS, CONSERVATIVE, style, PIPELINE, queries): LATENCY =
 # 6 + MUL_ADD + PIPELINE,
@@ -189,6 +192,8 @@ SHORT = [
     (16, 16, 1, "dsp-ecp5", 2, 0.25),  # LATENCY 8: PIPELINE = 2, a fabric register after every MULT18X18D
     (8, 8, 1, "auto", 2, 0.25),       # LATENCY 8: PIPELINE = 2 in fabric (tree cut, output register)
     (6, 6, 1, "dsp-ecp5", 2, 0.25),   # LATENCY 8: PIPELINE = 2, two products per MULT18X18D (paired)
+    (6, 6, 1, "rom-ecp5", 2, 0.25),   # LATENCY 8: every product from a DP16KD table
+    (6, 6, 0, "rom", 2, 0.25),        # LATENCY 8: the same tables on the generic path, nearest
 ]
 # PLUECKER_LONG=1: every width pair above in both modes with the default
 # multipliers, and the other builds, all at the full (25x) query counts.
@@ -215,14 +220,19 @@ def test_pluecker_intersector(coord_bits: int, dir_bits: int, conservative: int,
     parameters = {"COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 16, "CONSERVATIVE": conservative,
                   "PIPELINE": pipeline}
     sources, defines = rtl_sources(), {"ASSERT_ON": 1}
-    if mul == "lut":
-        parameters["MUL_STYLE"] = '"lut"'
-    elif mul == "dsp-ecp5":
-        parameters["MUL_STYLE"] = '"dsp"'
+    style = mul.removesuffix("-ecp5")
+    if style != "auto":
+        parameters["MUL_STYLE"] = f'"{style}"'
+    if mul.endswith("-ecp5"):
         sources += ecp5.model_sources()
         defines["PLUECKER_ECP5"] = 1
     build = Build(name).build(sources=sources, hdl_toplevel=TOPLEVEL, parameters=parameters, defines=defines,
                               build_args=VERILATOR_RTL_ARGS)
+    if mul == "rom-ecp5":
+        # pluecker_mul_rom's DP16KD instances (u_block) are in the model.
+        assert (any(build.dir.glob("Vtop_DP16KD*.h"))
+                or any(b"u_block__" in h.read_bytes() for h in build.dir.glob("Vtop*.h"))), \
+            "the build has no DP16KD: not the block-RAM path"
     if mul == "dsp-ecp5":
         # pluecker_mul's MULT18X18D instances (u_mult) are in the model
         # Verilator made: a module of their own (Vtop_MULT18X18D*.h) or
@@ -231,14 +241,13 @@ def test_pluecker_intersector(coord_bits: int, dir_bits: int, conservative: int,
                 or any(b"u_mult__" in h.read_bytes() for h in build.dir.glob("Vtop*.h"))), \
             "the build has no MULT18X18D: not the DSP path"
     build.test("test_pluecker_intersector", plusargs=verilator_plusargs(_seed(name)),
-               extra_env={"PLUECKER_TB_QUERIES": str(queries),
-                          "PLUECKER_TB_MUL_STYLE": {"auto": "auto", "lut": "lut", "dsp-ecp5": "dsp"}[mul]})
+               extra_env={"PLUECKER_TB_QUERIES": str(queries), "PLUECKER_TB_MUL_STYLE": style})
 
 
 # TERNARY = 1 (out_strict_o: the strict test of ternary.hpp): fabric
 # multipliers at a narrow width, the MULT18X18D model at 16/16 with the
 # multipliers' extra register, and the widest format (both products split).
-TERNARY_CONFIGS = [(8, 8, "auto", 0), (16, 16, "dsp-ecp5", 1), (24, 24, "auto", 0)]
+TERNARY_CONFIGS = [(8, 8, "auto", 0), (16, 16, "dsp-ecp5", 1), (24, 24, "auto", 0), (6, 6, "rom-ecp5", 2)]
 
 
 @pytest.mark.parametrize("coord_bits,dir_bits,mul,pipeline", TERNARY_CONFIGS,
@@ -252,12 +261,12 @@ def test_pluecker_intersector_ternary(coord_bits: int, dir_bits: int, mul: str, 
     parameters = {"COORD_BITS": coord_bits, "DIR_BITS": dir_bits, "TAG_BITS": 16, "CONSERVATIVE": 1,
                   "PIPELINE": pipeline, "TERNARY": 1}
     sources, defines = rtl_sources(), {"ASSERT_ON": 1}
-    if mul == "dsp-ecp5":
-        parameters["MUL_STYLE"] = '"dsp"'
+    style = mul.removesuffix("-ecp5")
+    if mul.endswith("-ecp5"):
+        parameters["MUL_STYLE"] = f'"{style}"'
         sources += ecp5.model_sources()
         defines["PLUECKER_ECP5"] = 1
     build = Build(name).build(sources=sources, hdl_toplevel=TOPLEVEL, parameters=parameters, defines=defines,
                               build_args=VERILATOR_RTL_ARGS)
     build.test("test_pluecker_intersector", plusargs=verilator_plusargs(_seed(name)),
-               extra_env={"PLUECKER_TB_QUERIES": "0.25",
-                          "PLUECKER_TB_MUL_STYLE": {"auto": "auto", "dsp-ecp5": "dsp"}[mul]})
+               extra_env={"PLUECKER_TB_QUERIES": "0.25", "PLUECKER_TB_MUL_STYLE": style})

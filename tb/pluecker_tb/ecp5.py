@@ -7,8 +7,10 @@ fabric cells (LUT4, CCU2C, TRELLIS_FF, PFUMX, ...), and cells_bb.v,
 blackboxes of the hard blocks generated from Lattice's cell library. Yosys
 0.70 has no simulation model of MULT18X18D (only the blackbox), so the
 benches use the project's model hdl/MULT18X18D.v, whose ports and
-parameters tb/pluecker_mul/test_mult18x18d.py checks against the installed
+parameters tb/mult18x18d/test_mult18x18d.py checks against the installed
 blackbox, and whose products it checks against Yosys' own DSP mapping.
+Likewise for the block RAM DP16KD (a blackbox in cells_sim.v): the model
+hdl/DP16KD.v (read-only, 1K x 18), checked by tb/dp16kd/test_dp16kd.py.
 Everything is read from the installed package at run time; nothing of it
 is copied into the repository.
 """
@@ -21,6 +23,7 @@ from pathlib import Path
 
 HDL = Path(__file__).resolve().parent / "hdl"
 MULT18X18D_MODEL = HDL / "MULT18X18D.v"
+DP16KD_MODEL = HDL / "DP16KD.v"
 MULT18X18D_WAIVERS = HDL / "mult18x18d.vlt"
 CELLS_SIM_WAIVERS = HDL / "cells_sim.vlt"
 
@@ -43,11 +46,12 @@ def cells_sim_sources() -> list:
 
 
 def model_sources() -> list:
-    """The MULT18X18D model and its lint waivers, for a Verilator build of
-    the RTL with PLUECKER_ECP5 defined (after rtl_sources())."""
+    """The MULT18X18D and DP16KD models and the MULT18X18D lint waivers,
+    for a Verilator build of the RTL with PLUECKER_ECP5 defined (after
+    rtl_sources())."""
     from cocotb_tools.runner import VerilatorControlFile
 
-    return [VerilatorControlFile(MULT18X18D_WAIVERS), MULT18X18D_MODEL]
+    return [VerilatorControlFile(MULT18X18D_WAIVERS), MULT18X18D_MODEL, DP16KD_MODEL]
 
 
 class MissingTool(RuntimeError):

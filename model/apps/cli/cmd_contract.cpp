@@ -130,9 +130,11 @@ void print_contract(const PortContract& pc) {
     std::printf("COORD_BITS %d, DIR_BITS %d, TAG_BITS %d, CONSERVATIVE %d, MUL_STYLE %s, PIPELINE %d\n",
                 c.coord_bits, c.dir_bits, c.tag_bits, c.conservative ? 1 : 0, mul_style_name(c.mul_style),
                 c.pipeline);
-    std::printf("  multipliers   %s, operands %d x %d bits, %d MULT18X18D\n",
-                pc.fabric_multipliers() ? "fabric (pluecker_mul_lut)" : "DSP (pluecker_mul)", pc.mul_a_bits(),
-                pc.mul_b_bits(), pc.dsp_blocks());
+    std::printf("  multipliers   %s, operands %d x %d bits, %d MULT18X18D, %d DP16KD\n",
+                pc.rom_multipliers()      ? "block-RAM tables (pluecker_mul_rom)"
+                : pc.fabric_multipliers() ? "fabric (pluecker_mul_lut)"
+                                          : "DSP (pluecker_mul)",
+                pc.mul_a_bits(), pc.mul_b_bits(), pc.dsp_blocks(), pc.rom_blocks());
     std::printf("  MUL_ADD       %d\n", pc.mul_add());
     std::printf("  S2x stages    %d (PIPELINE + MUL_ADD)\n", pc.s2x_stages());
     std::printf("  LATENCY       %d\n", pc.latency());

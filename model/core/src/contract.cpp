@@ -21,7 +21,7 @@ using L = ContractLimits;
 
 using detail::axis_name;
 
-constexpr MulStyle kStyles[] = {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut};
+constexpr MulStyle kStyles[] = {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut, MulStyle::Rom};
 
 bool split(int operand_bits) { return operand_bits > L::kDspOperandBits; }
 
@@ -62,6 +62,8 @@ struct Row {
     bool valid = false;
     bool fabric = false;
     int mul_add = 0, s2x = 0, latency = 0, fifo_depth = 0, dsp = 0;
+    bool rom = false;
+    int rom_blocks = 0;
     bool operator==(const Row&) const = default;
 };
 
@@ -75,7 +77,7 @@ Row row_of(int c, int d, MulStyle s, int p) {
     try {
         const PortContract pc(cfg);
         r = Row{true, pc.fabric_multipliers(), pc.mul_add(), pc.s2x_stages(), pc.latency(), pc.fifo_depth(),
-                pc.dsp_blocks()};
+                pc.dsp_blocks(), pc.rom_multipliers(), pc.rom_blocks()};
     } catch (const InputError&) {
         r.valid = false;
     }
@@ -94,7 +96,7 @@ std::vector<std::pair<int, int>> width_runs(bool coord) {
     });
 }
 
-const char* multiplier_name(bool fabric) { return fabric ? "lut" : "dsp"; }
+const char* multiplier_name(const ContractClass& c) { return c.rom ? "rom" : c.fabric ? "lut" : "dsp"; }
 
 }  // namespace
 
@@ -103,6 +105,7 @@ const char* mul_style_name(MulStyle s) {
         case MulStyle::Auto: return "auto";
         case MulStyle::Dsp: return "dsp";
         case MulStyle::Lut: return "lut";
+        case MulStyle::Rom: return "rom";
     }
     return "?";
 }
@@ -116,12 +119,22 @@ void validate_rtl_config(const RtlConfig& c) {
     if (c.pipeline < 0 || c.pipeline > L::kMaxPipeline)
         throw InputError("PIPELINE = " + std::to_string(c.pipeline) + " is outside 0.." +
                          std::to_string(L::kMaxPipeline));
-    if (c.mul_style != MulStyle::Auto && c.mul_style != MulStyle::Dsp && c.mul_style != MulStyle::Lut)
-        throw InputError("MUL_STYLE is not one of auto, dsp, lut");
+    if (c.mul_style != MulStyle::Auto && c.mul_style != MulStyle::Dsp && c.mul_style != MulStyle::Lut &&
+        c.mul_style != MulStyle::Rom)
+        throw InputError("MUL_STYLE is not one of auto, dsp, lut, rom");
     if (c.mul_style == MulStyle::Lut && mul_add_of(c) != 0)
         throw InputError("MUL_STYLE lut supports COORD_BITS and DIR_BITS up to " +
                          std::to_string(L::kDspOperandBits - 1) + " (COORD_BITS = " + std::to_string(c.coord_bits) +
                          ", DIR_BITS = " + std::to_string(c.dir_bits) + ")");
+    if (c.mul_style == MulStyle::Rom) {
+        if (c.pipeline != L::kMaxPipeline)
+            throw InputError("MUL_STYLE rom needs PIPELINE = " + std::to_string(L::kMaxPipeline) + " (PIPELINE = " +
+                             std::to_string(c.pipeline) + ")");
+        if (c.coord_bits + 1 + (c.dir_bits + 1) / 2 > L::kRomAddressBits)
+            throw InputError("MUL_STYLE rom needs COORD_BITS + 1 + ceil(DIR_BITS / 2) <= " +
+                             std::to_string(L::kRomAddressBits) + ", one 1K x 18 block-RAM port (COORD_BITS = " +
+                             std::to_string(c.coord_bits) + ", DIR_BITS = " + std::to_string(c.dir_bits) + ")");
+    }
 }
 
 PortContract::PortContract(const RtlConfig& config) : config_(config) {
@@ -167,14 +180,17 @@ int PortContract::fifo_depth() const {
 
 bool PortContract::paired_products() const {
     // a*(b0 + b1 2^K), K = WA - 1 + D, must fit the unsigned 18-bit port.
-    return !fabric_ && config_.pipeline == 2 && config_.coord_bits + 2 * config_.dir_bits <= L::kDspOperandBits;
+    return !fabric_ && !rom_multipliers() && config_.pipeline == 2 &&
+           config_.coord_bits + 2 * config_.dir_bits <= L::kDspOperandBits;
 }
 
 int PortContract::dsp_blocks() const {
-    if (fabric_) return 0;
+    if (fabric_ || rom_multipliers()) return 0;
     if (paired_products()) return L::kProducts / 2;
     return L::kProducts * (split(mul_a_bits()) ? 2 : 1) * (split(mul_b_bits()) ? 2 : 1);
 }
+
+int PortContract::rom_blocks() const { return rom_multipliers() ? L::kProducts : 0; }
 
 const PortSpec& PortContract::port(std::string_view name) const {
     for (const PortSpec& p : ports_)
@@ -235,7 +251,7 @@ std::vector<ContractClass> contract_classes() {
                     const Row r = row_of(clo, dlo, s, p);
                     if (!r.valid) continue;
                     out.push_back(ContractClass{clo, chi, dlo, dhi, s, p, r.fabric, r.mul_add, r.s2x, r.latency,
-                                                r.fifo_depth, r.dsp});
+                                                r.fifo_depth, r.dsp, r.rom, r.rom_blocks});
                 }
     return out;
 }
@@ -261,6 +277,8 @@ std::string contract_sv_package() {
          "  localparam int DSP_OPERAND_BITS = " << L::kDspOperandBits << ";\n"
          "  // MUL_STYLE \"auto\": fabric multipliers when both widths are at most this.\n"
          "  localparam int MUL_LUT_MAX_BITS = " << L::kMulLutMaxBits << ";\n"
+         "  // MUL_STYLE \"rom\": address bits of one block-RAM read port (1K x 18).\n"
+         "  localparam int ROM_ADDRESS_BITS = " << L::kRomAddressBits << ";\n"
          "\n"
          "  // The class of a configuration (c = COORD_BITS, d = DIR_BITS, s = MUL_STYLE\n"
          "  // as a 32-bit pattern, p = PIPELINE), -1 when the module refuses it.\n"
@@ -278,10 +296,14 @@ std::string contract_sv_package() {
     };
     table("contract_mul_lut", "bit", "1: fabric multipliers (pluecker_mul_lut), 0: pluecker_mul",
           [](const ContractClass& c) { return c.fabric ? 1 : 0; });
+    table("contract_mul_rom", "bit", "1: table multipliers (pluecker_mul_rom)",
+          [](const ContractClass& c) { return c.rom ? 1 : 0; });
     table("contract_mul_add", "int", "MUL_ADD", [](const ContractClass& c) { return c.mul_add; });
     table("contract_latency", "int", "LATENCY", [](const ContractClass& c) { return c.latency; });
     table("contract_fifo_depth", "int", "FIFO_DEPTH", [](const ContractClass& c) { return c.fifo_depth; });
     table("contract_mult18x18d", "int", "MULT18X18D of one unit", [](const ContractClass& c) { return c.dsp_blocks; });
+    table("contract_dp16kd", "int", "DP16KD of one unit's multipliers",
+          [](const ContractClass& c) { return c.rom_blocks; });
     s << axis_sv_functions();
     s << "endpackage\n";
     return s.str();
@@ -295,8 +317,9 @@ std::string contract_json() {
          "  \"limits\": {\"coord_bits\": ["
       << L::kMinBits << ", " << L::kMaxBits << "], \"dir_bits\": [" << L::kMinBits << ", " << L::kMaxBits
       << "], \"tag_bits_min\": " << L::kMinTagBits << ", \"pipeline\": [0, " << L::kMaxPipeline
-      << "], \"mul_styles\": [\"auto\", \"dsp\", \"lut\"], \"dsp_operand_bits\": " << L::kDspOperandBits
-      << ", \"mul_lut_max_bits\": " << L::kMulLutMaxBits << "},\n"
+      << "], \"mul_styles\": [\"auto\", \"dsp\", \"lut\", \"rom\"], \"dsp_operand_bits\": "
+      << L::kDspOperandBits << ", \"mul_lut_max_bits\": " << L::kMulLutMaxBits
+      << ", \"rom_address_bits\": " << L::kRomAddressBits << "},\n"
       << "  \"defaults\": {\"coord_bits\": " << def.coord_bits << ", \"dir_bits\": " << def.dir_bits
       << ", \"tag_bits\": " << def.tag_bits << ", \"conservative\": " << (def.conservative ? 1 : 0)
       << ", \"mul_style\": \"" << mul_style_name(def.mul_style) << "\", \"pipeline\": " << def.pipeline << "},\n"
@@ -306,9 +329,10 @@ std::string contract_json() {
         const ContractClass& c = classes[k];
         s << "    {\"coord_bits\": [" << c.coord_lo << ", " << c.coord_hi << "], \"dir_bits\": [" << c.dir_lo << ", "
           << c.dir_hi << "], \"mul_style\": \"" << mul_style_name(c.mul_style) << "\", \"pipeline\": " << c.pipeline
-          << ", \"multiplier\": \"" << multiplier_name(c.fabric) << "\", \"mul_add\": " << c.mul_add
+          << ", \"multiplier\": \"" << multiplier_name(c) << "\", \"mul_add\": " << c.mul_add
           << ", \"s2x_stages\": " << c.s2x_stages << ", \"latency\": " << c.latency
-          << ", \"fifo_depth\": " << c.fifo_depth << ", \"mult18x18d\": " << c.dsp_blocks << "}"
+          << ", \"fifo_depth\": " << c.fifo_depth << ", \"mult18x18d\": " << c.dsp_blocks
+          << ", \"dp16kd\": " << c.rom_blocks << "}"
           << (k + 1 < classes.size() ? "," : "") << "\n";
     }
     s << "  ]\n}\n";

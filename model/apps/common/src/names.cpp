@@ -42,7 +42,8 @@ MulStyle parse_mul_style(const std::string& s) {
     if (s == "auto") return MulStyle::Auto;
     if (s == "dsp") return MulStyle::Dsp;
     if (s == "lut") return MulStyle::Lut;
-    throw InputError("MUL_STYLE '" + s + "' is not one of auto, dsp, lut");
+    if (s == "rom") return MulStyle::Rom;
+    throw InputError("MUL_STYLE '" + s + "' is not one of auto, dsp, lut, rom");
 }
 
 FloatUnit parse_float_unit(const std::string& s) {

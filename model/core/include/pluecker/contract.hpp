@@ -13,7 +13,7 @@
 //   COORD_BITS = C, DIR_BITS = D   6..24 each (ContractLimits::kMinBits..kMaxBits)
 //   TAG_BITS                       >= 1
 //   CONSERVATIVE                   1 (margin) or 0 (nearest)
-//   MUL_STYLE                      "auto" | "dsp" | "lut"
+//   MUL_STYLE                      "auto" | "dsp" | "lut" | "rom"
 //   PIPELINE                       0..2: the multipliers' extra registers (1:
 //                                   the MULT18X18D pipeline register, in
 //                                   fabric a cut across the adder tree; 2:
@@ -36,9 +36,16 @@
 //                                   C + 2 D <= 18 (6/6): one MULT18X18D
 //                                   does both products of a difference
 //                                   (rtl/pluecker_mul_pair.sv)
-//   MULT18X18D per unit             0 with fabric multipliers, 6 with paired
-//                                   products, else
+//   MULT18X18D per unit             0 with fabric or table multipliers, 6
+//                                   with paired products, else
 //                                   12 (1 + (WA > 18)) (1 + (WB > 18))
+//   table multipliers               MUL_STYLE "rom": every product looked up
+//                                   in one block RAM (DP16KD, both ports;
+//                                   rtl/pluecker_mul_rom.sv); needs
+//                                   PIPELINE = 2 and WA + ceil(D/2) <= 10
+//                                   (kRomAddressBits: one 1K x 18 port),
+//                                   i.e. 6/6 bits
+//   DP16KD per unit                 12 with table multipliers, else 0
 //
 // Ports (port_list): x in the low field, then y, then z; coordinates
 // (origin, segment end, box planes) C-bit two's complement, directions D-bit
@@ -76,6 +83,8 @@ struct ContractLimits {
     // MUL_STYLE "auto" builds the multipliers in fabric when both widths are
     // at most this (measured: more box tests per second per chip there).
     static constexpr int kMulLutMaxBits = 9;
+    // MUL_STYLE "rom": address bits of one block-RAM read port (1K x 18).
+    static constexpr int kRomAddressBits = 10;
     // S0..S4 and the FIFO write, without S2x stages.
     static constexpr int kBaseLatency = 6;
     // Products B_j*D_i and A_i*D_j of the six edge tests.
@@ -89,7 +98,7 @@ struct ContractDefaults {
     static constexpr int kTagBits = 16;
 };
 
-enum class MulStyle { Auto, Dsp, Lut };
+enum class MulStyle { Auto, Dsp, Lut, Rom };
 
 const char* mul_style_name(MulStyle s);
 
@@ -134,6 +143,8 @@ public:
     int fifo_depth() const;
     bool paired_products() const;  // two products per MULT18X18D
     int dsp_blocks() const;  // MULT18X18D of one intersector
+    bool rom_multipliers() const { return config_.mul_style == MulStyle::Rom; }
+    int rom_blocks() const;  // DP16KD of one intersector (its table multipliers)
 
     // Every port of the module, in declaration order.
     const std::vector<PortSpec>& ports() const { return ports_; }
@@ -199,6 +210,8 @@ struct ContractClass {
     int latency = 0;
     int fifo_depth = 0;
     int dsp_blocks = 0;
+    bool rom = false;  // table multipliers (MUL_STYLE "rom")
+    int rom_blocks = 0;
 };
 
 std::vector<ContractClass> contract_classes();
