@@ -175,23 +175,25 @@ sim-float-render: build
 	cmp $$d/render_rtl.png $$d/render_model.png && \
 	echo "sim-float-render: $(FLOAT_TEST) RTL render identical to the model's ($$d/render_rtl.png)"
 # ---- The array's harness (sim/array/) -----------------------------------------
-# make sim-array         builds build/sim/array_<ARRAY_DSP>x<ARRAY_LUT>_<C>x<D>[_nearest][_p<P>]/pluecker_sim_array:
-#                        rtl/pluecker_array.sv with ARRAY_DSP units on DSP multipliers and ARRAY_LUT
-#                        in fabric (up to 17/17 bits), one lane each
+# make sim-array         builds build/sim/array_<ARRAY_DSP>x<ARRAY_LUT>[x<ARRAY_ROM>]_<C>x<D>[_nearest][_p<P>]/
+#                        pluecker_sim_array: rtl/pluecker_array.sv with ARRAY_DSP units on DSP
+#                        multipliers, ARRAY_LUT in fabric (up to 17/17 bits) and ARRAY_ROM on block-RAM
+#                        tables (6/6, SIM_PIPELINE=2), one lane each
 # make sim-array-render  hardware-in-the-loop render of SCENE at SIM_SIZE, every batch spread over the
 #                        lanes, compared byte for byte with `pluecker render --test fixed` at
 #                        COORD_BITS/DIR_BITS (fails loudly when they differ)
 # make sim-array-check   ARRAY_N queries and operands of every kind through all lanes with
 #                        back-pressure, idle inputs and resets mid-stream, against the model
-# Variables: ARRAY_DSP, ARRAY_LUT (default 1 and 1), COORD_BITS, DIR_BITS, MODE, SIM_TAG_BITS,
+# Variables: ARRAY_DSP, ARRAY_LUT, ARRAY_ROM (default 1, 1, 0), COORD_BITS, DIR_BITS, MODE, SIM_TAG_BITS,
 # SIM_PIPELINE (0; 1 or 2 add _p<P> to the build folder).
 ARRAY_DSP     ?= 1
 ARRAY_LUT     ?= 1
+ARRAY_ROM     ?= 0
 ARRAY_N       ?= 200000
-ARRAY_SIM_DIR  = build/sim/array_$(ARRAY_DSP)x$(ARRAY_LUT)_$(COORD_BITS)x$(DIR_BITS)$(if \
+ARRAY_SIM_DIR  = build/sim/array_$(ARRAY_DSP)x$(ARRAY_LUT)$(if $(filter-out 0,$(ARRAY_ROM)),x$(ARRAY_ROM))_$(COORD_BITS)x$(DIR_BITS)$(if \
                  $(filter nearest,$(MODE)),_nearest)$(if $(filter-out 0,$(SIM_PIPELINE)),_p$(SIM_PIPELINE))
 ARRAY_SIM_BIN  = $(ARRAY_SIM_DIR)/pluecker_sim_array
-ARRAY_SIM_VARS = SIM_UNIT=array ARRAY_DSP=$(ARRAY_DSP) ARRAY_LUT=$(ARRAY_LUT) COORD_BITS=$(COORD_BITS) \
+ARRAY_SIM_VARS = SIM_UNIT=array ARRAY_DSP=$(ARRAY_DSP) ARRAY_LUT=$(ARRAY_LUT) ARRAY_ROM=$(ARRAY_ROM) COORD_BITS=$(COORD_BITS) \
                  DIR_BITS=$(DIR_BITS) MODE=$(MODE) SIM_TAG_BITS=$(SIM_TAG_BITS) SIM_PIPELINE=$(SIM_PIPELINE) \
                  MODEL_BUILD=$(BUILD) SIM_JOBS=$(JOBS) SIM_OUT=$(ARRAY_SIM_DIR)
 ARRAY_OUT      = $(OUT)/$(SCENE)_$(notdir $(ARRAY_SIM_DIR))

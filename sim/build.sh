@@ -17,12 +17,13 @@
 # or 4; default the contract's) is MUL_DSP, the widths are not used, and
 # SIM_OUT defaults to build/sim/<unit>[_cons]_dsp<M>. SIM_UNIT=array builds
 # `pluecker_sim_array`: rtl/pluecker_array.sv with the harness in
-# sim/array/, ARRAY_DSP units with MUL_STYLE dsp and ARRAY_LUT with
-# MUL_STYLE lut (0..256 each, 1..256 together; default 1 and 1), one lane
-# each, at COORD_BITS, DIR_BITS, MODE, SIM_TAG_BITS and SIM_PIPELINE; a
-# style the port contract has no class for at those widths (fabric units
-# take up to 17 bits) is refused; SIM_OUT defaults to
-# build/sim/array_<N_DSP>x<N_LUT>_<C>x<D>[_nearest][_p<P>]. SIM_UNIT=cascade builds
+# sim/array/, ARRAY_DSP units with MUL_STYLE dsp, ARRAY_LUT with
+# MUL_STYLE lut and ARRAY_ROM with MUL_STYLE rom (0..256 each, 1..256
+# together; default 1, 1 and 0), one lane each, at COORD_BITS, DIR_BITS,
+# MODE, SIM_TAG_BITS and SIM_PIPELINE; a style the port contract has no
+# class for at those widths and PIPELINE (fabric units take up to 17 bits,
+# table units 6/6 with PIPELINE 2) is refused; SIM_OUT defaults to
+# build/sim/array_<N_DSP>x<N_LUT>[x<N_ROM>]_<C>x<D>[_nearest][_p<P>]. SIM_UNIT=cascade builds
 # `pluecker_sim_cascade`: rtl/pluecker_cascade.sv with the harness in
 # sim/cascade/, CASCADE_N narrow lanes (1..64, default 2; TERNARY units at
 # NARROW_COORD_BITS x NARROW_DIR_BITS, default 8 x 8) escalating to one wide
@@ -91,10 +92,12 @@ array_style_ok() {
     2>&1 > /dev/null)" && return 0
   [[ "$msg" == contract:* ]] || die "cannot read the port contract (scripts/contract.py row): $msg"
   range="$(python3 "$root/scripts/contract.py" classes |
-    awk -v s="$style" '$5 == s { if ($2 > c) c = $2; if ($4 > d) d = $4 }
-      END { print "up to COORD_BITS=" c " DIR_BITS=" d }')"
+    awk -v s="$style" '$5 == s { if ($2 > c) c = $2; if ($4 > d) d = $4; p[$6] = 1 }
+      END { printf "up to COORD_BITS=%s DIR_BITS=%s", c, d
+            if (!(0 in p) || !(1 in p) || !(2 in p)) { printf " with PIPELINE"; for (k in p) printf " %s", k }
+            print "" }')"
   die "$setting=$count: a unit with MUL_STYLE $style takes $range (the port contract," \
-    "rtl/pluecker_contract.json), not COORD_BITS=$C DIR_BITS=$D; set $setting=0 or narrower widths"
+    "rtl/pluecker_contract.json), not COORD_BITS=$C DIR_BITS=$D PIPELINE=$pipeline; set $setting=0 or other widths"
 }
 unit_args=()
 case "$unit" in
@@ -143,18 +146,23 @@ case "$unit" in
     fixed_widths
     ND="${ARRAY_DSP:-1}"
     NL="${ARRAY_LUT:-1}"
+    NR="${ARRAY_ROM:-0}"
     P="${SIM_PIPELINE:-0}"
     is_int_in "$ND" 0 256 || die "ARRAY_DSP=$ND is not an integer in 0..256"
     is_int_in "$NL" 0 256 || die "ARRAY_LUT=$NL is not an integer in 0..256"
+    is_int_in "$NR" 0 256 || die "ARRAY_ROM=$NR is not an integer in 0..256"
     ND=$((10#$ND))
     NL=$((10#$NL))
-    ((ND + NL >= 1 && ND + NL <= 256)) ||
-      die "ARRAY_DSP + ARRAY_LUT = $((ND + NL)) is not in 1..256 (the array needs at least one unit)"
+    NR=$((10#$NR))
+    ((ND + NL + NR >= 1 && ND + NL + NR <= 256)) ||
+      die "ARRAY_DSP + ARRAY_LUT + ARRAY_ROM = $((ND + NL + NR)) is not in 1..256 (the array needs at least one unit)"
     [[ "$P" =~ ^[012]$ ]] || die "SIM_PIPELINE=$P is not 0, 1 or 2"
     array_style_ok "$ND" dsp ARRAY_DSP "$P"
     array_style_ok "$NL" lut ARRAY_LUT "$P"
-    default_out="build/sim/array_${ND}x${NL}_${C}x${D}${suffix}$([[ $P != 0 ]] && echo "_p$P" || true)"
-    unit_args=(-DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_ARRAY_DSP="$ND" -DSIM_ARRAY_LUT="$NL")
+    array_style_ok "$NR" rom ARRAY_ROM "$P"
+    default_out="build/sim/array_${ND}x${NL}$([[ $NR != 0 ]] && echo "x$NR" || true)_${C}x${D}${suffix}$([[ $P != 0 ]] && echo "_p$P" || true)"
+    unit_args=(-DSIM_COORD_BITS="$C" -DSIM_DIR_BITS="$D" -DSIM_ARRAY_DSP="$ND" -DSIM_ARRAY_LUT="$NL"
+      -DSIM_ARRAY_ROM="$NR")
     binary=pluecker_sim_array
     ;;
   cascade)

@@ -28,29 +28,34 @@ RtlConfig lane_config(int lane) {
     c.dir_bits = SIM_DIR_BITS;
     c.tag_bits = SIM_TAG_BITS;
     c.conservative = SIM_CONSERVATIVE != 0;
-    c.mul_style = lane < kDspLanes ? MulStyle::Dsp : MulStyle::Lut;
+    c.mul_style = lane < kDspLanes ? MulStyle::Dsp : lane < kDspLanes + kLutLanes ? MulStyle::Lut : MulStyle::Rom;
     c.pipeline = SIM_PIPELINE;
     return c;
 }
 
 // One contract per style, built when a lane of that style asks (a fabric
-// contract refuses widths the fabric multipliers do not take).
+// or table contract refuses widths its multipliers do not take).
 const PortContract& lane_contract(int lane) {
     if (lane < kDspLanes) {
         static const PortContract dsp(lane_config(0));
         return dsp;
     }
-    static const PortContract lut(lane_config(kDspLanes));
-    return lut;
+    if (lane < kDspLanes + kLutLanes) {
+        static const PortContract lut(lane_config(kDspLanes));
+        return lut;
+    }
+    static const PortContract rom(lane_config(kDspLanes + kLutLanes));
+    return rom;
 }
 
 FixedFormat built_format() { return lane_contract(0).format(); }
 
-const char* lane_style(int lane) { return lane < kDspLanes ? "dsp" : "lut"; }
+const char* lane_style(int lane) { return mul_style_name(lane_config(lane).mul_style); }
 
 std::string build_name() {
     const FixedFormat f = built_format();
-    return std::to_string(SIM_ARRAY_DSP) + " dsp + " + std::to_string(SIM_ARRAY_LUT) + " lut, " +
+    return std::to_string(SIM_ARRAY_DSP) + " dsp + " + std::to_string(SIM_ARRAY_LUT) + " lut" +
+           (SIM_ARRAY_ROM ? " + " + std::to_string(SIM_ARRAY_ROM) + " rom" : std::string()) + ", " +
            std::to_string(f.coord_bits) + "x" + std::to_string(f.dir_bits) + " " + mode_name(f.mode);
 }
 

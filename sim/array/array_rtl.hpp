@@ -5,10 +5,11 @@
 // round-robin, every lane is driven every clock, and each lane's answers
 // are matched in order by its own tags.
 //
-// N_DSP, N_LUT, widths, mode, TAG_BITS and PIPELINE are fixed when the
-// harness is built (sim/build.sh with SIM_UNIT=array passes them to
+// N_DSP, N_LUT, N_ROM, widths, mode, TAG_BITS and PIPELINE are fixed when
+// the harness is built (sim/build.sh with SIM_UNIT=array passes them to
 // Verilator as -G parameters and to this code as SIM_* macros). Lanes
-// 0..N_DSP-1 are units with MUL_STYLE "dsp", the others "lut". The port
+// 0..N_DSP-1 are units with MUL_STYLE "dsp", the next N_LUT "lut", the
+// last N_ROM "rom" (block-RAM tables, 6/6 with PIPELINE = 2). The port
 // encoding of a lane and its LATENCY are the port contract's
 // (pluecker/contract.hpp, one contract per multiplier style): the
 // constructor checks the Verilated ports' widths (N lanes of the contract's
@@ -42,6 +43,9 @@
 #ifndef SIM_ARRAY_LUT
 #error "SIM_ARRAY_LUT must be defined (sim/build.sh passes it)"
 #endif
+#ifndef SIM_ARRAY_ROM
+#define SIM_ARRAY_ROM 0
+#endif
 #ifndef SIM_COORD_BITS
 #error "SIM_COORD_BITS must be defined (sim/build.sh passes it)"
 #endif
@@ -57,20 +61,22 @@
 #ifndef SIM_PIPELINE
 #define SIM_PIPELINE 0
 #endif
-static_assert(SIM_ARRAY_DSP >= 0 && SIM_ARRAY_LUT >= 0 && SIM_ARRAY_DSP + SIM_ARRAY_LUT >= 1,
+static_assert(SIM_ARRAY_DSP >= 0 && SIM_ARRAY_LUT >= 0 && SIM_ARRAY_ROM >= 0 &&
+                  SIM_ARRAY_DSP + SIM_ARRAY_LUT + SIM_ARRAY_ROM >= 1,
               "the array needs at least one unit");
 
 namespace pluecker::sim {
 
 inline constexpr int kDspLanes = SIM_ARRAY_DSP;
-inline constexpr int kLanes = SIM_ARRAY_DSP + SIM_ARRAY_LUT;
+inline constexpr int kLutLanes = SIM_ARRAY_LUT;
+inline constexpr int kLanes = SIM_ARRAY_DSP + SIM_ARRAY_LUT + SIM_ARRAY_ROM;
 
 // The configuration of lane `lane`'s unit, its port contract, and the
 // fixed-point format every lane computes.
 RtlConfig lane_config(int lane);
 const PortContract& lane_contract(int lane);
 FixedFormat built_format();
-// "1 dsp + 1 lut, 8x8 conservative" for messages.
+// "1 dsp + 1 lut, 8x8 conservative" (+ " + 1 rom" with table units) for messages.
 std::string build_name();
 const char* lane_style(int lane);
 

@@ -75,7 +75,7 @@ int cmd_render(const std::vector<std::string>& given) {
     const double seconds = render_through(*s, *a, engine, st, [&](double wall) {
         nlohmann::json j = rtl_section("pluecker_sim_array", engine.queries(), engine.batches(),
                                        engine.mismatches(), engine.rtl_seconds(), rs, wall);
-        j["units"] = {{"dsp", SIM_ARRAY_DSP}, {"lut", SIM_ARRAY_LUT}};
+        j["units"] = {{"dsp", SIM_ARRAY_DSP}, {"lut", SIM_ARRAY_LUT}, {"rom", SIM_ARRAY_ROM}};
         j["pipeline"] = SIM_PIPELINE;
         j["lanes"] = lanes_json(rtl);
         return j;

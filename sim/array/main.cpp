@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `pluecker_sim_array`: the Verilator harness of rtl/pluecker_array.sv
-// (N_DSP + N_LUT intersector units side by side, one lane each), linked with
+// (N_DSP + N_LUT + N_ROM intersector units side by side, one lane each), linked with
 // the golden model library.
 #include "commands.hpp"
 #include "harness_main.hpp"
@@ -27,6 +27,7 @@ void check_build_options(const app::Args& args) {
                      std::to_string(want.coord_bits) + "x" + std::to_string(want.dir_bits) + " " +
                      mode_name(want.mode) + "; build that one with: make sim-array ARRAY_DSP=" +
                      std::to_string(SIM_ARRAY_DSP) + " ARRAY_LUT=" + std::to_string(SIM_ARRAY_LUT) +
+                     (SIM_ARRAY_ROM ? " ARRAY_ROM=" + std::to_string(SIM_ARRAY_ROM) : std::string()) +
                      " COORD_BITS=" + std::to_string(want.coord_bits) + " DIR_BITS=" +
                      std::to_string(want.dir_bits) + " MODE=" + mode_name(want.mode));
 }
@@ -69,8 +70,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: pluecker_sim_array <command> [options]\n"
-    "  the Verilator model of rtl/pluecker_array.sv (N_DSP + N_LUT intersector units, one\n"
-    "  lane each), driven through the golden model: every batch of queries is spread over\n"
+    "  the Verilator model of rtl/pluecker_array.sv (N_DSP + N_LUT + N_ROM intersector units,\n"
+    "  one lane each), driven through the golden model: every batch of queries is spread over\n"
     "  the lanes round-robin, all lanes are driven every clock, and each lane's answers are\n"
     "  matched in order by tag and checked against the model's fixed_hit\n"
     "commands:\n"

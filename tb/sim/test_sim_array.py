@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 """The array's Verilator harness (sim/array/, pluecker_sim_array): a mixed
 array of one DSP and one fabric unit and an all-fabric array of three, both
-at 8/8 conservative, checked against the golden model: a
+at 8/8 conservative, and a 6/6 array of one DSP and one block-RAM table
+unit (PIPELINE 2), checked against the golden model: a
 hardware-in-the-loop render (every batch spread over the lanes, all lanes
 streaming at once, also under back-pressure and idle inputs) must be
 byte-identical to `pluecker render --test fixed` with the same widths and
@@ -33,13 +34,15 @@ def run(args, **kw):
     return subprocess.run([str(a) for a in args], capture_output=True, text=True, cwd=ROOT, **kw)
 
 
-def build_array(n_dsp, n_lut):
+def build_array(n_dsp, n_lut, n_rom=0, c=C, d=D, pipeline=0):
     """Builds (or finds up to date) the harness; a lock keeps xdist workers apart."""
     assert (MODEL_BUILD / "pluecker-config.cmake").exists(), f"model libraries not built in {MODEL_BUILD} (make build)"
-    out = ROOT / "build" / "sim" / f"array_{n_dsp}x{n_lut}_{C}x{D}"
+    out = ROOT / "build" / "sim" / (f"array_{n_dsp}x{n_lut}{f'x{n_rom}' if n_rom else ''}_{c}x{d}"
+                                    + (f"_p{pipeline}" if pipeline else ""))
     out.mkdir(parents=True, exist_ok=True)
-    env = dict(os.environ, SIM_UNIT="array", ARRAY_DSP=str(n_dsp), ARRAY_LUT=str(n_lut), COORD_BITS=str(C),
-               DIR_BITS=str(D), MODE="conservative", MODEL_BUILD=str(MODEL_BUILD), SIM_OUT=str(out))
+    env = dict(os.environ, SIM_UNIT="array", ARRAY_DSP=str(n_dsp), ARRAY_LUT=str(n_lut), ARRAY_ROM=str(n_rom),
+               COORD_BITS=str(c), DIR_BITS=str(d), SIM_PIPELINE=str(pipeline), MODE="conservative",
+               MODEL_BUILD=str(MODEL_BUILD), SIM_OUT=str(out))
     with open(out / ".build.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         r = run(BUILD_SH, env=env)
@@ -61,13 +64,13 @@ def mixed():
     return build_array(1, 1)
 
 
-def render_pair(sim, tmp_path, extra=()):
+def render_pair(sim, tmp_path, extra=(), c=C, d=D):
     """The array's render and the model's, same options; both stats."""
     common = ["--scene", "teapot", "--size", "32", "--order", "dsa", "--quiet"]
     r = run([sim, "render", *common, *extra, "--out", tmp_path / "rtl.png", "--stats", tmp_path / "rtl.json"])
     assert r.returncode == 0, r.stdout + r.stderr
     assert " 0 mismatches" in r.stdout, r.stdout
-    m = run([CLI, "render", "--test", "fixed", "--coord-bits", C, "--dir-bits", D, "--mode", "conservative", *common,
+    m = run([CLI, "render", "--test", "fixed", "--coord-bits", c, "--dir-bits", d, "--mode", "conservative", *common,
              "--out", tmp_path / "model.png", "--stats", tmp_path / "model.json"])
     assert m.returncode == 0, m.stdout + m.stderr
     c = run(["cmp", tmp_path / "rtl.png", tmp_path / "model.png"])
@@ -84,7 +87,7 @@ def test_render_identical_to_model(array, tmp_path):
     section = rtl["rtl"]
     assert section["mismatches"] == 0
     assert section["queries"] == model["box_tests"] > 20000
-    assert section["units"] == {"dsp": n_dsp, "lut": n_lut}
+    assert section["units"] == {"dsp": n_dsp, "lut": n_lut, "rom": 0}
     lanes = section["lanes"]
     assert [lane["mul_style"] for lane in lanes] == ["dsp"] * n_dsp + ["lut"] * n_lut
     assert all(lane["latency"] == 6 for lane in lanes)
@@ -139,6 +142,19 @@ def test_bench_short(mixed):
     assert r.stdout.count(" 0 mismatches") == 3, r.stdout
 
 
+def test_render_through_table_units(tmp_path):
+    """One DSP and one block-RAM table unit at 6/6 (PIPELINE 2, LATENCY 8):
+    the render through both lanes is byte-identical to the model's."""
+    sim = build_array(1, 0, 1, 6, 6, 2)
+    rtl, model = render_pair(sim, tmp_path, c=6, d=6)
+    section = rtl["rtl"]
+    assert section["mismatches"] == 0 and section["queries"] == model["box_tests"] > 20000
+    assert section["units"] == {"dsp": 1, "lut": 0, "rom": 1} and section["pipeline"] == 2
+    lanes = section["lanes"]
+    assert [lane["mul_style"] for lane in lanes] == ["dsp", "rom"]
+    assert all(lane["latency"] == 8 for lane in lanes) and min(lane["queries"] for lane in lanes) > 10000
+
+
 def test_bad_settings():
     def expect2(settings, text):
         env = dict(os.environ, SIM_UNIT="array", MODEL_BUILD=str(MODEL_BUILD), **settings)
@@ -149,7 +165,12 @@ def test_bad_settings():
     # Fabric units stop at 17 bits (the port contract's lut classes).
     expect2({"ARRAY_LUT": "1", "COORD_BITS": "18", "DIR_BITS": "8"},
             "ARRAY_LUT=1: a unit with MUL_STYLE lut takes up to COORD_BITS=17 DIR_BITS=17")
-    expect2({"ARRAY_DSP": "0", "ARRAY_LUT": "0"}, "ARRAY_DSP + ARRAY_LUT = 0 is not in 1..256")
+    # Table units: 6/6 with PIPELINE 2 only.
+    expect2({"ARRAY_ROM": "1", "SIM_PIPELINE": "2"},
+            "ARRAY_ROM=1: a unit with MUL_STYLE rom takes up to COORD_BITS=6 DIR_BITS=6 with PIPELINE 2")
+    expect2({"ARRAY_ROM": "1", "COORD_BITS": "6", "DIR_BITS": "6"}, "not COORD_BITS=6 DIR_BITS=6 PIPELINE=0")
+    expect2({"ARRAY_DSP": "0", "ARRAY_LUT": "0"}, "ARRAY_DSP + ARRAY_LUT + ARRAY_ROM = 0 is not in 1..256")
+    expect2({"ARRAY_ROM": "x"}, "ARRAY_ROM=x is not an integer in 0..256")
     expect2({"ARRAY_DSP": "two"}, "ARRAY_DSP=two is not an integer in 0..256")
     expect2({"ARRAY_LUT": "257"}, "ARRAY_LUT=257 is not an integer in 0..256")
     expect2({"SIM_PIPELINE": "3"}, "SIM_PIPELINE=3 is not 0, 1 or 2")
