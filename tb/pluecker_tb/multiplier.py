@@ -124,19 +124,24 @@ class MulBench:
         self.dut._log.info("%s: %d products compared, latency histogram %s", what, sb.compared, sb.histogram())
 
 
-class RomBench:
+class RomBench(MulBench):
     """The bench of the block-RAM table multiplier (rtl/pluecker_mul_rom.sv)
     around hdl/mul_rom_stream.sv or a Yosys netlist of it: a_i signed WA
     bits, b_i unsigned WU bits, p_o = a*b signed WA + WU + 1 bits, LATENCY
     edges after the operands (WA, WU, LATENCY, ECP5 read back from the DUT).
-    Operands: every (a, b) when WA + WU <= 14, else the corner values of a
-    against every b of up to 8 bits (or b's corners and 256 at random),
-    both sides at random besides; idle gaps optional."""
+    MulBench's driver, sink, scoreboard and run serve it (b as a WU-bit
+    operand that is never negative). Operands: every (a, b) when
+    WA + WU <= 14, else the corner values of a against every b of up to 8
+    bits (or b's corners and 256 at random), both sides at random besides;
+    idle gaps optional."""
 
     def __init__(self, dut, seed: int, idle: bool = False):
+        # MulBench.__init__ is not called: it reads parameters (PIPELINE,
+        # LUT, SIGNED) that the table multiplier's bench top lacks.
         self.dut = dut
         self.wa = int(dut.WA.value)
-        self.wu = int(dut.WU.value)
+        self.wu = self.wb = int(dut.WU.value)
+        self.signed = 1  # the product is signed; run() then drives the pairs as given (b in 0..2^WU - 1)
         self.latency = int(dut.LATENCY.value)
         self.ecp5 = int(dut.ECP5.value)
         self.rng = random.Random(seed)
@@ -145,32 +150,8 @@ class RomBench:
         dut._log.info("DUT pluecker_mul_rom WA=%d WU=%d LATENCY=%d%s, seed %d, idle=%s", self.wa, self.wu,
                       self.latency, " (ECP5 path: DP16KD)" if self.ecp5 else "", seed, idle)
 
-    async def start(self) -> None:
-        dut = self.dut
-        dut.in_valid_i.value = 0
-        self._junk()
-        self.edges = await clock_reset.start(dut.clk_i, dut.rst_i, 3)
-        self.driver = StreamDriver(dut.clk_i, dut.in_valid_i, None, dut.rst_i, self.edges, self.idle_gen,
-                                   self._apply, self._junk, lambda item, edge: self.scoreboard.push(None, item, edge))
-        self.sink = StreamSink(dut.clk_i, dut.out_valid_o, None, dut.rst_i, self.edges, traffic.AlwaysReady(),
-                               self._transfer, self.scoreboard.error, quiet=[dut.out_valid_o])
-        cocotb.start_soon(self.sink.run())
-
-    def _junk(self) -> None:
-        self.dut.a_i.value = self.rng.getrandbits(self.wa)
-        self.dut.b_i.value = self.rng.getrandbits(self.wu)
-
-    def _apply(self, pair) -> None:
-        self.dut.a_i.value = pair[0] & ((1 << self.wa) - 1)
-        self.dut.b_i.value = pair[1]
-
     def _transfer(self, edge: int) -> None:
         self.scoreboard.check(None, to_signed(int(self.dut.p_o.value), self.wa + self.wu + 1), edge)
-
-    @staticmethod
-    def _compare(pair, got: int) -> str | None:
-        want = pair[0] * pair[1]
-        return None if got == want else f"{pair[0]} * {pair[1]}: got {got}, expected {want}"
 
     def pairs(self, n_random: int) -> list[tuple[int, int]]:
         wa, wu, rng = self.wa, self.wu, self.rng
@@ -184,11 +165,3 @@ class RomBench:
         out += [(to_signed(rng.getrandbits(wa), wa), rng.getrandbits(wu)) for _ in range(n_random)]
         rng.shuffle(out)
         return out
-
-    async def run(self, pairs, what: str) -> None:
-        await self.driver.send(pairs)
-        await drain(self.dut.clk_i, self.scoreboard)
-        sb = self.scoreboard
-        sb.assert_clean()
-        assert sb.compared == len(pairs), f"compared {sb.compared} of {len(pairs)}"
-        self.dut._log.info("%s: %d products compared, latency histogram %s", what, sb.compared, sb.histogram())
