@@ -380,6 +380,15 @@ module pluecker_intersector #(
     endv0_q <= ray_end_valid_i;
   end
 
+  // With table multipliers the S0 registers hold A_i and B_i in the form
+  // the tables take, {sign, magnitude bits A ^ sign} (one LUT level in S0
+  // instead of one between these registers and the blocks' address pins,
+  // where the route into the block RAM column made it the chip's limit);
+  // S1's margin magnitudes are then the low bits as they are.
+  function automatic logic [WA-1:0] ones_form(input logic [WA-1:0] v);
+    ones_form = MUL_ROM ? {v[WA-1], v[WA-2:0] ^ {(WA - 1) {v[WA-1]}}} : v;
+  endfunction
+
   for (genvar i = 0; i < 3; i++) begin : g_sel
     wire n = ray_class_i[i];
     wire [C-1:0] o0 = ray_org_i[i*C+:C];
@@ -408,8 +417,8 @@ module pluecker_intersector #(
     wire gp_in2 = gp_in && (|g_pos[WA-2:1]);
     wire gn_in2 = gn_in && (|g_neg[WA-2:1]);
     always_ff @(posedge clk_i) begin
-      a0_q[i] <= n ? a_neg : a_pos;
-      b0_q[i] <= n ? b_neg : b_pos;
+      a0_q[i] <= ones_form(n ? a_neg : a_pos);
+      b0_q[i] <= ones_form(n ? b_neg : b_pos);
       end_in0_q[i] <= n ? gn_in : gp_in;
       end_in20_q[i] <= n ? gn_in2 : gp_in2;
     end
@@ -445,8 +454,8 @@ module pluecker_intersector #(
   always_ff @(posedge clk_i) begin
     tag1_q    <= tag0_q;
     for (int i = 0; i < 3; i++) begin
-      ma1_q[i] <= a_d[i][WMAG-1:0] ^ {WMAG{a_d[i][WA-1]}};
-      mb1_q[i] <= b_d[i][WMAG-1:0] ^ {WMAG{b_d[i][WA-1]}};
+      ma1_q[i] <= MUL_ROM ? a_d[i][WMAG-1:0] : a_d[i][WMAG-1:0] ^ {WMAG{a_d[i][WA-1]}};
+      mb1_q[i] <= MUL_ROM ? b_d[i][WMAG-1:0] : b_d[i][WMAG-1:0] ^ {WMAG{b_d[i][WA-1]}};
       sa1_q[i] <= a_d[i][WA-1];
       sb1_q[i] <= b_d[i][WA-1];
     end

@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The table multipliers of one axis: four registered products of two
 // signed operands by two unsigned ones, looked up in three block RAMs,
-//   pa0_o = a_i * d0_i, pa1_o = a_i * d1_i, pb0_o = b_i * d0_i, pb1_o = b_i * d1_i
-// (a_i, b_i WA-bit two's complement, d0_i, d1_i WU-bit unsigned), 4 clock
-// edges after the operands, as pluecker_mul with PIPELINE = 2.
+//   pa0_o = A * d0_i, pa1_o = A * d1_i, pb0_o = B * d0_i, pb1_o = B * d1_i
+// 4 clock edges after the operands, as pluecker_mul with PIPELINE = 2
+// (d0_i, d1_i WU-bit unsigned). The signed operands A, B (WA bits) come in
+// the form the tables take: a_i = {s, m} with s = sign(A) and
+// m = A[WA-2:0] ^ s, i.e. A = s ? -(m + 1) : m (the intersector forms it in
+// its S0 registers, so that the blocks' address pins are driven straight
+// from flops). Products pa0_o..pb1_o are two's complement.
 //
 // The intersector's MUL_STYLE "rom" (PIPELINE = 2): axis i multiplies its
 // two differences A_i, B_i by the two other direction magnitudes, so three
@@ -13,7 +17,7 @@
 // 208 DP16KD: 23 units).
 //
 // Magnitude and sign. With s = sign(a) and m = a ^ s (the WM = WA - 1 low
-// bits; m = a when s = 0, m = |a| - 1 when s = 1):
+// bits; m = a when s = 0, m = |a| - 1 when s = 1; a_i carries {s, m}):
 //   a * d = s ? -(m*d) - d : m*d
 // so the tables hold unsigned products of m alone and the sign is applied
 // in fabric: with w = m*d + (s ? d - 1 : 0), a*d = s ? ~w : w (as
@@ -102,12 +106,12 @@ module pluecker_mul_rom #(
   endfunction
 `endif
 
-  // Operands as sign and magnitude bits (one LUT level before the blocks'
-  // address registers).
+  // Sign and magnitude bits, straight from the ports (no logic before the
+  // blocks' address registers).
   wire sa = a_i[WA-1];
   wire sb = b_i[WA-1];
-  wire [WM-1:0] ma = a_i[WM-1:0] ^ {WM{sa}};
-  wire [WM-1:0] mb = b_i[WM-1:0] ^ {WM{sb}};
+  wire [WM-1:0] ma = a_i[WM-1:0];
+  wire [WM-1:0] mb = b_i[WM-1:0];
   wire [UL-1:0] d0l = d0_i[UL-1:0];
   wire [UL-1:0] d1l = d1_i[UL-1:0];
   wire [UH-1:0] d0h = d0_i[WU-1:UL];

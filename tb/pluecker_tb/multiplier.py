@@ -126,8 +126,9 @@ class MulBench:
 
 class RomBench(MulBench):
     """The bench of the block-RAM table multipliers (rtl/pluecker_mul_rom.sv)
-    around hdl/mul_rom_stream.sv or a Yosys netlist of it: a_i, b_i signed
-    WA bits, d0_i, d1_i unsigned WU bits, the four products a*d0, a*d1,
+    around hdl/mul_rom_stream.sv or a Yosys netlist of it: signed operands
+    a, b of WA bits driven as {sign, low bits ^ sign} on a_i, b_i (the
+    module's operand form), d0_i, d1_i unsigned WU bits, the four products a*d0, a*d1,
     b*d0, b*d1 (signed WA + WU + 1 bits) LATENCY edges after the operands
     (WA, WU, LATENCY, ECP5 read back from the DUT). MulBench's driver, sink,
     scoreboard and run serve it, with (a, b, d0, d1) items. Operands (see
@@ -158,11 +159,15 @@ class RomBench(MulBench):
         dut.d0_i.value = self.rng.getrandbits(self.wu)
         dut.d1_i.value = self.rng.getrandbits(self.wu)
 
+    def _ones_form(self, v: int) -> int:
+        """The operand port's form {sign, magnitude bits v ^ sign}."""
+        mask = (1 << self.wa) - 1
+        return (v & mask) ^ (mask >> 1) if v < 0 else v
+
     def _apply(self, item) -> None:
         a, b, d0, d1 = item
-        mask = (1 << self.wa) - 1
-        self.dut.a_i.value = a & mask
-        self.dut.b_i.value = b & mask
+        self.dut.a_i.value = self._ones_form(a)
+        self.dut.b_i.value = self._ones_form(b)
         self.dut.d0_i.value = d0
         self.dut.d1_i.value = d1
 
