@@ -54,7 +54,7 @@
 `default_nettype none
 
 module pluecker_mul_rom #(
-    parameter int WA = 7,  // signed operands a_i, b_i
+    parameter int WA = 7,  // operands a_i, b_i: {sign, magnitude bits} (above)
     parameter int WU = 6,  // unsigned operands d0_i, d1_i
     // Product width (signed, as pluecker_mul with WB = WU + 1; not to be
     // overridden).
