@@ -17,8 +17,8 @@
 // unit up to 17/17 bits; six at 6/6 with PIPELINE = 2, two products a
 // block, rtl/pluecker_mul_pair.sv), the next N_LUT lanes MUL_STYLE "lut"
 // (multipliers in fabric, up to 17/17 bits) and the last N_ROM lanes
-// MUL_STYLE "rom" (products looked up in block RAM, nine DP16KD a unit;
-// 6/6 bits with PIPELINE = 2, rtl/pluecker_mul_rom.sv), so one chip
+// MUL_STYLE "rom" (each product looked up in a block RAM, twelve DP16KD a
+// unit; 6/6 bits with PIPELINE = 2, rtl/pluecker_mul_rom.sv), so one chip
 // can fill its DSP blocks, its block RAM and its LUTs at once: a mixed
 // array. Every unit has the same COORD_BITS, DIR_BITS, TAG_BITS,
 // CONSERVATIVE and PIPELINE, hence one query encoding; where several styles

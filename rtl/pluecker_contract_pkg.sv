@@ -1061,7 +1061,7 @@ package pluecker_contract_pkg;
       120: contract_dp16kd = 0;
       121: contract_dp16kd = 0;
       122: contract_dp16kd = 0;
-      123: contract_dp16kd = 9;
+      123: contract_dp16kd = 12;
       default: contract_dp16kd = 0;
     endcase
   endfunction

@@ -101,8 +101,8 @@ module pluecker_intersector #(
     parameter bit CONSERVATIVE = 1,  // 1: conservative margin (never misses); 0: 'nearest' (no margin)
     // Multipliers: "dsp" = pluecker_mul (on ECP5 MULT18X18D blocks),
     // "lut" = pluecker_mul_lut (fabric only), "rom" = pluecker_mul_rom
-    // (block-RAM tables, three DP16KD an axis; PIPELINE = 2 and
-    // 3 COORD_BITS + 2 DIR_BITS <= 30, i.e. 6/6), "auto" = "lut"
+    // (block-RAM tables, one DP16KD a product; PIPELINE = 2 and
+    // COORD_BITS + 1 + ceil(DIR_BITS/2) <= 10, i.e. 6/6), "auto" = "lut"
     // when both COORD_BITS and DIR_BITS are at most MUL_LUT_MAX_BITS, else
     // "dsp".
     parameter MUL_STYLE = "auto",
@@ -227,19 +227,17 @@ module pluecker_intersector #(
     $error("pluecker_intersector: MUL_STYLE \"lut\" supports COORD_BITS and DIR_BITS up to 17");
   end
 
-  // Table multipliers (MUL_STYLE "rom", rtl/pluecker_mul_rom.sv): per axis
-  // three DP16KD look up the magnitudes of A_i and B_i times the two other
-  // D (two tables of 1K x 18 words: the low parts of D, and both high parts
-  // packed), the signs applied in fabric; it fits when
-  // 3 C + 2 D <= 3 ROM_ADDRESS_BITS.
+  // Table multipliers (MUL_STYLE "rom", rtl/pluecker_mul_rom.sv): one
+  // DP16KD a product, both read ports of a table t[{x, a}] = a*x with x a
+  // half of D_i; the address takes WA + ceil(D/2) bits of a 1K x 18 port.
   localparam bit MUL_ROM = MUL_STYLE_S == 32'("rom");
   localparam int ROM_ADDRESS_BITS = pluecker_contract_pkg::ROM_ADDRESS_BITS;
-  localparam bit ROM_OK = !MUL_ROM || (PIPELINE == 2 && 3 * C + 2 * D <= 3 * ROM_ADDRESS_BITS);
+  localparam bit ROM_OK = !MUL_ROM || (PIPELINE == 2 && WA + (D + 1) / 2 <= ROM_ADDRESS_BITS);
   if (!ROM_OK) begin : g_bad_rom
-    $error("pluecker_intersector: MUL_STYLE \"rom\" needs PIPELINE = 2 and 3 COORD_BITS + 2 DIR_BITS <= 30");
+    $error("pluecker_intersector: MUL_STYLE \"rom\" needs PIPELINE = 2 and COORD_BITS + 1 + ceil(DIR_BITS/2) <= 10");
   end
   // DP16KD of one unit's multipliers (the port contract's dp16kd).
-  localparam int N_DP16KD = MUL_ROM ? 9 : 0;
+  localparam int N_DP16KD = MUL_ROM ? 12 : 0;
 
   // Paired products: with DSP multipliers, PIPELINE = 2 and
   // C + 2 D <= DSP_OPERAND_BITS (6/6 bits) each MULT18X18D does the two
@@ -380,15 +378,6 @@ module pluecker_intersector #(
     endv0_q <= ray_end_valid_i;
   end
 
-  // With table multipliers the S0 registers hold A_i and B_i in the form
-  // the tables take, {sign, magnitude bits A ^ sign} (one LUT level in S0
-  // instead of one between these registers and the blocks' address pins,
-  // where the route into the block RAM column made it the chip's limit);
-  // S1's margin magnitudes are then the low bits as they are.
-  function automatic logic [WA-1:0] ones_form(input logic [WA-1:0] v);
-    ones_form = MUL_ROM ? {v[WA-1], v[WA-2:0] ^ {(WA - 1) {v[WA-1]}}} : v;
-  endfunction
-
   for (genvar i = 0; i < 3; i++) begin : g_sel
     wire n = ray_class_i[i];
     wire [C-1:0] o0 = ray_org_i[i*C+:C];
@@ -417,8 +406,8 @@ module pluecker_intersector #(
     wire gp_in2 = gp_in && (|g_pos[WA-2:1]);
     wire gn_in2 = gn_in && (|g_neg[WA-2:1]);
     always_ff @(posedge clk_i) begin
-      a0_q[i] <= ones_form(n ? a_neg : a_pos);
-      b0_q[i] <= ones_form(n ? b_neg : b_pos);
+      a0_q[i] <= n ? a_neg : a_pos;
+      b0_q[i] <= n ? b_neg : b_pos;
       end_in0_q[i] <= n ? gn_in : gp_in;
       end_in20_q[i] <= n ? gn_in2 : gp_in2;
     end
@@ -454,8 +443,8 @@ module pluecker_intersector #(
   always_ff @(posedge clk_i) begin
     tag1_q    <= tag0_q;
     for (int i = 0; i < 3; i++) begin
-      ma1_q[i] <= MUL_ROM ? a_d[i][WMAG-1:0] : a_d[i][WMAG-1:0] ^ {WMAG{a_d[i][WA-1]}};
-      mb1_q[i] <= MUL_ROM ? b_d[i][WMAG-1:0] : b_d[i][WMAG-1:0] ^ {WMAG{b_d[i][WA-1]}};
+      ma1_q[i] <= a_d[i][WMAG-1:0] ^ {WMAG{a_d[i][WA-1]}};
+      mb1_q[i] <= b_d[i][WMAG-1:0] ^ {WMAG{b_d[i][WA-1]}};
       sa1_q[i] <= a_d[i][WA-1];
       sb1_q[i] <= b_d[i][WA-1];
     end
@@ -501,14 +490,14 @@ module pluecker_intersector #(
   end
 
   if (MUL_ROM) begin : g_rom
-    // Axis i's four products, as g_pair's: A_i times D_(i+1) and D_(i+2),
-    // B_i times the same two (pairs 2(i+1)+1 and 2(i+2)+0).
-    for (genvar i = 0; i < 3; i++) begin : g_axis
-      localparam int I1 = (i + 1) % 3;
-      localparam int I2 = (i + 2) % 3;
-      pluecker_mul_rom #(.WA(WA), .WU(D)) u_mul (
-          .clk_i(clk_i), .a_i(a_d[i]), .b_i(b_d[i]), .d0_i(dir0_q[I1]), .d1_i(dir0_q[I2]),
-          .pa0_o(pa2_q[2*i]), .pa1_o(pa2_q[2*i+1]), .pb0_o(pb2_q[2*I1+1]), .pb1_o(pb2_q[2*I2]));
+    // Pair k's two products, each from a block-RAM table.
+    for (genvar k = 0; k < 6; k++) begin : g_prod
+      localparam int I = pair_i(k);
+      localparam int J = pair_j(k);
+      pluecker_mul_rom #(.WA(WA), .WU(D)) u_mul_b (
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i(dir0_q[I]), .p_o(pb2_q[k]));
+      pluecker_mul_rom #(.WA(WA), .WU(D)) u_mul_a (
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i(dir0_q[J]), .p_o(pa2_q[k]));
     end
   end
 

@@ -242,7 +242,7 @@ reject 'verilator rejects MUL_STYLE="rom" at PIPELINE=1' '"rom" needs PIPELINE =
     -GMUL_STYLE='"rom"' -GPIPELINE=1
 reject 'verilator rejects MUL_STYLE="rom" at 6/7' '"rom" needs PIPELINE = 2' -GCOORD_BITS=6 -GDIR_BITS=7 \
     -GMUL_STYLE='"rom"' -GPIPELINE=2
-refused "verilator rejects pluecker_mul_rom WA=8 WU=6" "3 (WA - 1) + 2 WU <= 30" -GWA=8 -GWU=6 \
+refused "verilator rejects pluecker_mul_rom WA=8 WU=6" "WA + ceil(WU/2) <= 10" -GWA=8 -GWU=6 \
     --top-module pluecker_mul_rom rtl/pluecker_mul_rom.sv
 
 # --- 4. Yosys ------------------------------------------------------------------------

@@ -90,14 +90,13 @@ TEST(Contract, MultiplierStyles) {
     for (MulStyle s : {MulStyle::Auto, MulStyle::Dsp, MulStyle::Lut})
         for (int p = 0; p <= 1; ++p) EXPECT_EQ(contract(8, 12, s, p).latency(), 6 + p);
     // Block-RAM tables (rtl/pluecker_mul_rom.sv): 6/6 with PIPELINE 2 only,
-    // nine DP16KD (three per axis) and no MULT18X18D, the latency of the
-    // other styles.
+    // twelve DP16KD and no MULT18X18D, the latency of the other styles.
     const PortContract rom = contract(6, 6, MulStyle::Rom, 2);
     EXPECT_TRUE(rom.rom_multipliers());
     EXPECT_FALSE(rom.fabric_multipliers());
     EXPECT_FALSE(rom.paired_products());
     EXPECT_EQ(rom.dsp_blocks(), 0);
-    EXPECT_EQ(rom.rom_blocks(), 9);
+    EXPECT_EQ(rom.rom_blocks(), 12);
     EXPECT_EQ(rom.latency(), contract(6, 6, MulStyle::Dsp, 2).latency());
     EXPECT_EQ(contract(6, 6, MulStyle::Dsp, 2).rom_blocks(), 0);
     EXPECT_EQ(contract(6, 6, MulStyle::Lut, 2).rom_blocks(), 0);
@@ -146,7 +145,7 @@ TEST(Contract, RefusesWhatTheRtlRefuses) {
     c.pipeline = 2;
     EXPECT_NO_THROW(validate_rtl_config(c));
     c.dir_bits = 7;
-    refuses(c, "MUL_STYLE rom needs 3 COORD_BITS + 2 DIR_BITS <= 30");
+    refuses(c, "MUL_STYLE rom needs COORD_BITS + 1 + ceil(DIR_BITS / 2) <= 10");
     c.dir_bits = 6;
     c.coord_bits = 7;
     refuses(c, "(COORD_BITS = 7, DIR_BITS = 6)");

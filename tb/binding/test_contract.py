@@ -76,7 +76,7 @@ def test_every_configuration_has_the_row_of_the_table():
     ({"mul_style": "fast"}, "fast"),
     ({"coord_bits": 18, "mul_style": "lut"}, "MUL_STYLE lut"),
     ({"coord_bits": 6, "dir_bits": 6, "mul_style": "rom", "pipeline": 1}, "MUL_STYLE rom needs PIPELINE = 2"),
-    ({"coord_bits": 6, "dir_bits": 8, "mul_style": "rom", "pipeline": 2}, "three look-ups of 10 address bits"),
+    ({"coord_bits": 6, "dir_bits": 8, "mul_style": "rom", "pipeline": 2}, "one 1K x 18 block-RAM port"),
 ])
 def test_contract_refuses(kwargs, part):
     with pytest.raises(pp.InputError, match=part):

@@ -240,7 +240,7 @@ def test_array_two_clocks_smoke(tmp_path):
 
 def test_array_rom_smoke(tmp_path):
     """One unit with block-RAM table multipliers (--array 0x0x1 at 6/6,
-    PIPELINE 2) through the flow (speed 8, one seed): its nine DP16KD
+    PIPELINE 2) through the flow (speed 8, one seed): its twelve DP16KD
     instances (REGMODE OUTREG, tables from the RTL) placed and routed, no
     MULT18X18D, the array's box tests per second."""
     reason = _tools_missing()
@@ -253,14 +253,14 @@ def test_array_rom_smoke(tmp_path):
     s = json.loads((tmp_path / "array_0x0x1_6x6_p2" / "summary.json").read_text())
     u = s["utilisation"]
     import contract  # scripts/contract.py
-    assert u["DP16KD"] == contract.row(6, 6, "rom", 2)["dp16kd"] == 9, u
-    assert u["placed"]["DP16KD"] == 9 and u["MULT18X18D"] == 0, u
+    assert u["DP16KD"] == contract.row(6, 6, "rom", 2)["dp16kd"] == 12, u
+    assert u["placed"]["DP16KD"] == 12 and u["MULT18X18D"] == 0, u
     assert (s["n_dsp"], s["n_lut"], s["n_rom"]) == (0, 0, 1) and s["array"]["units"] == 1
     (run,) = s["runs"]
     assert "error" not in run and run["fmax"] > 0, run
     net = json.loads((tmp_path / "array_0x0x1_6x6_p2" / "netlist.json").read_text())
     blocks = [c for m in net["modules"].values() for c in m["cells"].values() if c["type"] == "DP16KD"]
-    assert len(blocks) == 9 and all(b["parameters"]["REGMODE_A"] == "OUTREG" for b in blocks)
+    assert len(blocks) == 12 and all(b["parameters"]["REGMODE_A"] == "OUTREG" for b in blocks)
 
 
 def test_two_clocks_refused(tmp_path, capsys):

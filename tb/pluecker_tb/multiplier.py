@@ -125,25 +125,23 @@ class MulBench:
 
 
 class RomBench(MulBench):
-    """The bench of the block-RAM table multipliers (rtl/pluecker_mul_rom.sv)
-    around hdl/mul_rom_stream.sv or a Yosys netlist of it: signed operands
-    a, b of WA bits driven as {sign, low bits ^ sign} on a_i, b_i (the
-    module's operand form), d0_i, d1_i unsigned WU bits, the four products a*d0, a*d1,
-    b*d0, b*d1 (signed WA + WU + 1 bits) LATENCY edges after the operands
-    (WA, WU, LATENCY, ECP5 read back from the DUT). MulBench's driver, sink,
-    scoreboard and run serve it, with (a, b, d0, d1) items. Operands (see
-    quads): every (signed, unsigned) pair on each of the four products when
-    WA + WU <= 14, else corner values against every d of up to 8 bits (or
-    d's corners and 256 at random); random items besides; idle gaps
-    optional."""
+    """The bench of the block-RAM table multiplier (rtl/pluecker_mul_rom.sv)
+    around hdl/mul_rom_stream.sv or a Yosys netlist of it: a_i signed WA
+    bits, b_i unsigned WU bits, p_o = a*b signed WA + WU + 1 bits, LATENCY
+    edges after the operands (WA, WU, LATENCY, ECP5 read back from the DUT).
+    MulBench's driver, sink, scoreboard and run serve it (b as a WU-bit
+    operand that is never negative). Operands: every (a, b) when
+    WA + WU <= 14, else the corner values of a against every b of up to 8
+    bits (or b's corners and 256 at random), both sides at random besides;
+    idle gaps optional."""
 
     def __init__(self, dut, seed: int, idle: bool = False):
         # MulBench.__init__ is not called: it reads parameters (PIPELINE,
-        # LUT, SIGNED) that the table multipliers' bench top lacks.
+        # LUT, SIGNED) that the table multiplier's bench top lacks.
         self.dut = dut
         self.wa = int(dut.WA.value)
-        self.wu = int(dut.WU.value)
-        self.signed = 1  # run() drives the items as given (d in 0..2^WU - 1)
+        self.wu = self.wb = int(dut.WU.value)
+        self.signed = 1  # the product is signed; run() then drives the pairs as given (b in 0..2^WU - 1)
         self.latency = int(dut.LATENCY.value)
         self.ecp5 = int(dut.ECP5.value)
         self.rng = random.Random(seed)
@@ -152,62 +150,18 @@ class RomBench(MulBench):
         dut._log.info("DUT pluecker_mul_rom WA=%d WU=%d LATENCY=%d%s, seed %d, idle=%s", self.wa, self.wu,
                       self.latency, " (ECP5 path: DP16KD)" if self.ecp5 else "", seed, idle)
 
-    def _junk(self) -> None:
-        dut = self.dut
-        dut.a_i.value = self.rng.getrandbits(self.wa)
-        dut.b_i.value = self.rng.getrandbits(self.wa)
-        dut.d0_i.value = self.rng.getrandbits(self.wu)
-        dut.d1_i.value = self.rng.getrandbits(self.wu)
-
-    def _ones_form(self, v: int) -> int:
-        """The operand port's form {sign, magnitude bits v ^ sign}."""
-        mask = (1 << self.wa) - 1
-        return (v & mask) ^ (mask >> 1) if v < 0 else v
-
-    def _apply(self, item) -> None:
-        a, b, d0, d1 = item
-        self.dut.a_i.value = self._ones_form(a)
-        self.dut.b_i.value = self._ones_form(b)
-        self.dut.d0_i.value = d0
-        self.dut.d1_i.value = d1
-
     def _transfer(self, edge: int) -> None:
-        w = self.wa + self.wu + 1
-        dut = self.dut
-        got = tuple(to_signed(int(p.value), w) for p in (dut.pa0_o, dut.pa1_o, dut.pb0_o, dut.pb1_o))
-        self.scoreboard.check(None, got, edge)
+        self.scoreboard.check(None, to_signed(int(self.dut.p_o.value), self.wa + self.wu + 1), edge)
 
-    @staticmethod
-    def _compare(item, got) -> str | None:
-        a, b, d0, d1 = item
-        want = (a * d0, a * d1, b * d0, b * d1)
-        return None if got == want else f"(a, b, d0, d1) = {item}: got {got}, expected {want}"
-
-    def quads(self, n_random: int) -> list[tuple[int, int, int, int]]:
-        """Items (a, b, d0, d1). With WA + WU <= 14, two sweeps over every
-        (x, y) in 2^WA x 2^WU: (a, d0) = (x, y) with (b, d1) a bijection of
-        (x, y), then (a, d1) = (x, y) with (b, d0) one: each of the four
-        products meets every operand pair. Wider: corner values of the
-        signed operands against the set of d values, likewise crossed."""
+    def pairs(self, n_random: int) -> list[tuple[int, int]]:
         wa, wu, rng = self.wa, self.wu, self.rng
-        mu = (1 << wu) - 1
+        bs = list(range(1 << wu)) if wu <= 8 else sorted(
+            {0, 1, 2, (1 << wu) - 2, (1 << wu) - 1} | {1 << k for k in range(wu)} | {(1 << k) - 1 for k in range(wu)}
+            | {rng.getrandbits(wu) for _ in range(256)})
         if wa + wu <= 14:
-            xs = [to_signed(i, wa) for i in range(1 << wa)]
-            ds = list(range(1 << wu))
+            out = [(to_signed(i, wa), b) for i in range(1 << wa) for b in range(1 << wu)]
         else:
-            xs = corner_values(wa)
-            ds = list(range(1 << wu)) if wu <= 8 else sorted(
-                {0, 1, 2, mu - 1, mu} | {1 << k for k in range(wu)} | {(1 << k) - 1 for k in range(wu)}
-                | {rng.getrandbits(wu) for _ in range(256)})
-        nx, nd = len(xs), len(ds)
-        out = []
-        for i, x in enumerate(xs):
-            for j, y in enumerate(ds):
-                x2 = xs[(i * 5 + 3) % nx] if nx % 5 else xs[(i + 3) % nx]  # a bijection of i
-                y2 = ds[(j + 7) % nd]
-                out.append((x, x2, y, y2))  # (a, d0) = (x, y), (b, d1) = (x2, y2)
-                out.append((x, x2, y2, y))  # (a, d1) = (x, y), (b, d0) = (x2, y2)
-        out += [(to_signed(rng.getrandbits(wa), wa), to_signed(rng.getrandbits(wa), wa), rng.getrandbits(wu),
-                 rng.getrandbits(wu)) for _ in range(n_random)]
+            out = [(a, b) for a in corner_values(wa) for b in bs]
+        out += [(to_signed(rng.getrandbits(wa), wa), rng.getrandbits(wu)) for _ in range(n_random)]
         rng.shuffle(out)
         return out

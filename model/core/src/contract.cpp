@@ -130,10 +130,9 @@ void validate_rtl_config(const RtlConfig& c) {
         if (c.pipeline != L::kMaxPipeline)
             throw InputError("MUL_STYLE rom needs PIPELINE = " + std::to_string(L::kMaxPipeline) + " (PIPELINE = " +
                              std::to_string(c.pipeline) + ")");
-        if (3 * c.coord_bits + 2 * c.dir_bits > 3 * L::kRomAddressBits)
-            throw InputError("MUL_STYLE rom needs 3 COORD_BITS + 2 DIR_BITS <= " +
-                             std::to_string(3 * L::kRomAddressBits) + ", three look-ups of " +
-                             std::to_string(L::kRomAddressBits) + " address bits per difference (COORD_BITS = " +
+        if (c.coord_bits + 1 + (c.dir_bits + 1) / 2 > L::kRomAddressBits)
+            throw InputError("MUL_STYLE rom needs COORD_BITS + 1 + ceil(DIR_BITS / 2) <= " +
+                             std::to_string(L::kRomAddressBits) + ", one 1K x 18 block-RAM port (COORD_BITS = " +
                              std::to_string(c.coord_bits) + ", DIR_BITS = " + std::to_string(c.dir_bits) + ")");
     }
 }
@@ -191,8 +190,7 @@ int PortContract::dsp_blocks() const {
     return L::kProducts * (split(mul_a_bits()) ? 2 : 1) * (split(mul_b_bits()) ? 2 : 1);
 }
 
-// Three blocks per axis: four products of A_i and B_i in six read ports.
-int PortContract::rom_blocks() const { return rom_multipliers() ? L::kProducts * 3 / 4 : 0; }
+int PortContract::rom_blocks() const { return rom_multipliers() ? L::kProducts : 0; }
 
 const PortSpec& PortContract::port(std::string_view name) const {
     for (const PortSpec& p : ports_)

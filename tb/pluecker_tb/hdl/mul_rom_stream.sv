@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Bench top of the table multipliers' unit test: rtl/pluecker_mul_rom.sv
-// (on its ECP5 path, three DP16KD instances, when PLUECKER_ECP5 is defined)
+// Bench top of the table multiplier's unit test: rtl/pluecker_mul_rom.sv
+// (on its ECP5 path, one DP16KD instance, when PLUECKER_ECP5 is defined)
 // with a valid bit beside it, delayed by the module's documented LATENCY of
 // 4 clock edges (reset by rst_i), so a scoreboard that pairs each valid
-// output with the oldest outstanding operands checks the four products and
-// the latency together.
+// output with the oldest outstanding operands checks the product and the
+// latency together.
 `default_nettype none
 
 module mul_rom_stream #(
@@ -15,14 +15,9 @@ module mul_rom_stream #(
     input  wire                  rst_i,
     input  wire                  in_valid_i,
     input  wire signed [WA-1:0]  a_i,
-    input  wire signed [WA-1:0]  b_i,
-    input  wire        [WU-1:0]  d0_i,
-    input  wire        [WU-1:0]  d1_i,
+    input  wire        [WU-1:0]  b_i,
     output wire                  out_valid_o,
-    output wire signed [WA+WU:0] pa0_o,
-    output wire signed [WA+WU:0] pa1_o,
-    output wire signed [WA+WU:0] pb0_o,
-    output wire signed [WA+WU:0] pb1_o
+    output wire signed [WA+WU:0] p_o
 );
   localparam int LATENCY = 4;
 `ifdef PLUECKER_ECP5
@@ -31,9 +26,7 @@ module mul_rom_stream #(
   localparam bit ECP5 = 0;
 `endif
 
-  pluecker_mul_rom #(.WA(WA), .WU(WU)) u_dut (
-      .clk_i(clk_i), .a_i(a_i), .b_i(b_i), .d0_i(d0_i), .d1_i(d1_i),
-      .pa0_o(pa0_o), .pa1_o(pa1_o), .pb0_o(pb0_o), .pb1_o(pb1_o));
+  pluecker_mul_rom #(.WA(WA), .WU(WU)) u_dut (.clk_i(clk_i), .a_i(a_i), .b_i(b_i), .p_o(p_o));
 
   logic [LATENCY-1:0] valid_q;
   always_ff @(posedge clk_i) begin

@@ -39,15 +39,13 @@
 //   MULT18X18D per unit             0 with fabric or table multipliers, 6
 //                                   with paired products, else
 //                                   12 (1 + (WA > 18)) (1 + (WB > 18))
-//   table multipliers               MUL_STYLE "rom": the magnitudes of A_i
-//                                   and B_i times the two other D looked up
-//                                   in three block RAMs per axis (DP16KD,
-//                                   six read ports; rtl/pluecker_mul_rom.sv),
-//                                   the signs applied in fabric; needs
-//                                   PIPELINE = 2 and 3 C + 2 D <= 30
-//                                   (kRomAddressBits = 10: 1K x 18 ports),
+//   table multipliers               MUL_STYLE "rom": every product looked up
+//                                   in one block RAM (DP16KD, both ports;
+//                                   rtl/pluecker_mul_rom.sv); needs
+//                                   PIPELINE = 2 and WA + ceil(D/2) <= 10
+//                                   (kRomAddressBits: one 1K x 18 port),
 //                                   i.e. 6/6 bits
-//   DP16KD per unit                 9 with table multipliers, else 0
+//   DP16KD per unit                 12 with table multipliers, else 0
 //
 // Ports (port_list): x in the low field, then y, then z; coordinates
 // (origin, segment end, box planes) C-bit two's complement, directions D-bit
