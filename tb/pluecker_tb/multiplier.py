@@ -75,12 +75,16 @@ class MulBench:
         self.latency = int(dut.LATENCY.value)
         self.ecp5 = int(dut.ECP5.value)
         self.signed = int(dut.SIGNED.value)  # operands and product two's complement, else unsigned
-        self.rng = random.Random(seed)
-        self.idle_gen = traffic.idle_generator(random.Random(seed + 1), idle)
-        self.scoreboard = InOrderScoreboard(dut._log, self._compare)
+        self._traffic(seed, idle)
         dut._log.info("DUT %s WA=%d WB=%d PIPELINE=%d LATENCY=%d%s, seed %d, idle=%s",
                       "pluecker_mul_lut" if self.lut else "pluecker_mul", self.wa, self.wb, self.pipeline,
                       self.latency, " (ECP5 path: MULT18X18D)" if self.ecp5 and not self.lut else "", seed, idle)
+
+    def _traffic(self, seed: int, idle: bool) -> None:
+        """The operand generator, the idle gaps and the scoreboard."""
+        self.rng = random.Random(seed)
+        self.idle_gen = traffic.idle_generator(random.Random(seed + 1), idle)
+        self.scoreboard = InOrderScoreboard(self.dut._log, self._compare)
 
     async def start(self) -> None:
         dut = self.dut
@@ -136,17 +140,15 @@ class RomBench(MulBench):
     idle gaps optional."""
 
     def __init__(self, dut, seed: int, idle: bool = False):
-        # MulBench.__init__ is not called: it reads parameters (PIPELINE,
-        # LUT, SIGNED) that the table multiplier's bench top lacks.
+        # Not MulBench.__init__: it reads parameters (PIPELINE, LUT, SIGNED)
+        # that the table multiplier's bench top lacks.
         self.dut = dut
         self.wa = int(dut.WA.value)
         self.wu = self.wb = int(dut.WU.value)
         self.signed = 1  # the product is signed; run() then drives the pairs as given (b in 0..2^WU - 1)
         self.latency = int(dut.LATENCY.value)
         self.ecp5 = int(dut.ECP5.value)
-        self.rng = random.Random(seed)
-        self.idle_gen = traffic.idle_generator(random.Random(seed + 1), idle)
-        self.scoreboard = InOrderScoreboard(dut._log, self._compare)
+        self._traffic(seed, idle)
         dut._log.info("DUT pluecker_mul_rom WA=%d WU=%d LATENCY=%d%s, seed %d, idle=%s", self.wa, self.wu,
                       self.latency, " (ECP5 path: DP16KD)" if self.ecp5 else "", seed, idle)
 
