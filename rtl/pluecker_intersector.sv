@@ -5,7 +5,8 @@
 // (Mahovsky & Wyvill, JGT 9(1) 2004: the ray class selects the box planes,
 // then an origin test, a segment-end test and six 2x2 determinant sign tests
 // on the silhouette edges). One datapath serves all eight ray classes: the
-// class bits only steer multiplexers (in S0, which differences are kept).
+// class bits only act in S0 (a borrow into each subtract, and which
+// differences are kept).
 //
 // Ports
 //   in_*   one query per transfer (in_valid_i && in_ready_o at a rising edge
@@ -32,9 +33,9 @@
 // Pipeline (one query per clock; the datapath never stalls, there is no
 // clock enable on it: valid bits shift every cycle and back-pressure is
 // handled by an output FIFO and a credit counter)
-//   S0  subtract in front of the input registers (from the ports: both
-//       classes' differences, carry chains, then the class picks the
-//       results, one LUT level): A_i, B_i
+//   S0  subtract in front of the input registers (from the ports: one
+//       carry chain per box plane serves both classes, then the class
+//       picks and inverts the results, one LUT level): A_i, B_i
 //       and the end tests G_i >= 0, G_i >= 2 are registered, so that the
 //       multipliers' operands leave flops straight for their input
 //       registers (on a full chip the DSP columns are crowded and the
@@ -389,15 +390,22 @@ module pluecker_intersector #(
     wire signed [WA-1:0] l = {lo[C-1], lo};
     wire signed [WA-1:0] h = {hi[C-1], hi};
     wire signed [WA-1:0] e = {e0[C-1], e0};
-    // Both classes' differences straight from the ports (six carry chains),
-    // then the class picks the results (one LUT level before the flops).
-    // So the class bit drives only the 2 x WA + 2 result multiplexers, not
-    // six C-bit operand multiplexers in front of three chains: on a full
-    // chip that fan-out (about 100 LUT inputs from one flop) limited Fmax.
-    wire signed [WA-1:0] a_pos = l - o;  // entry plane, positive axis
-    wire signed [WA-1:0] a_neg = o - h;  // entry plane, negative axis
-    wire signed [WA-1:0] b_pos = h - o;  // exit plane, positive axis
-    wire signed [WA-1:0] b_neg = o - l;  // exit plane, negative axis
+    // Differences straight from the ports (four carry chains), then the
+    // class picks the results (one LUT level before the flops), so the class
+    // bit drives no operand multiplexer in front of a chain (on a full chip
+    // that fan-out, about 100 LUT inputs from one flop, limited Fmax).
+    // One chain per box plane serves both classes: it computes P - O - n
+    // ({P, 0} - {O, n}, upper WA bits), which is P - O for n = 0 and
+    // ~(O - P) for n = 1 (P - O - 1 = ~(O - P)), so
+    //   A = n ? ~dh : dl     B = n ? ~dl : dh
+    // and each origin bit feeds two chains, not four.
+    // Bit 0 of each only carries n's borrow into bit 1 (waived: unused).
+    /* verilator lint_off UNUSEDSIGNAL */
+    wire [WA:0] dl_x = {l, 1'b0} - {o, n};
+    wire [WA:0] dh_x = {h, 1'b0} - {o, n};
+    /* verilator lint_on UNUSEDSIGNAL */
+    wire [WA-1:0] dl = dl_x[WA:1];  // l - o - n
+    wire [WA-1:0] dh = dh_x[WA:1];  // h - o - n
     wire signed [WA-1:0] g_pos = e - l;  // end test, positive axis
     wire signed [WA-1:0] g_neg = h - e;  // end test, negative axis
     // G >= 0 and G >= 2 of each class, then the class picks.
@@ -406,8 +414,8 @@ module pluecker_intersector #(
     wire gp_in2 = gp_in && (|g_pos[WA-2:1]);
     wire gn_in2 = gn_in && (|g_neg[WA-2:1]);
     always_ff @(posedge clk_i) begin
-      a0_q[i] <= n ? a_neg : a_pos;
-      b0_q[i] <= n ? b_neg : b_pos;
+      a0_q[i] <= n ? ~dh : dl;
+      b0_q[i] <= n ? ~dl : dh;
       end_in0_q[i] <= n ? gn_in : gp_in;
       end_in20_q[i] <= n ? gn_in2 : gp_in2;
     end
