@@ -55,7 +55,9 @@
 //   S2x PIPELINE + MUL_ADD stages: PIPELINE (0..2) for the multipliers'
 //       extra registers (1: the MULT18X18D pipeline register, in fabric the
 //       register across pluecker_mul_lut's adder tree; 2: also a fabric
-//       register after every product), MUL_ADD (0 when
+//       register after every product, or in pluecker_mul_lut with 5 or
+//       more rows the same registers spread over its adder tree),
+//       MUL_ADD (0 when
 //       both multiplier operands fit 18 bits, i.e. COORD_BITS <= 17 and
 //       DIR_BITS <= 17; else 1 or 2) for the sums of 18x18 partial products
 //       of wider products on ECP5 (pluecker_mul); the first of them

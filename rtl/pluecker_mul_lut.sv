@@ -10,25 +10,29 @@
 // unit (not LUTs) would limit how many units fit on a chip.
 //
 // Structure
-//   edge 1  the WB partial-product rows r_j = b_i[j] ? a_i : 0 (signed,
-//           WA bits) are registered (where a DSP has its input registers)
-//   comb.   the rows are summed by a balanced binary tree of adders:
-//             a*b = sum_{j<WB-1} r_j 2^j - r_{WB-1} 2^(WB-1)
-//           (the row of the sign bit of b is subtracted). A node covering
-//           c rows holds |value| <= 2^(WA-1) (2^c - 1), WA + c signed bits
-//           (WA for a single row), capped at the product bits above its
-//           lowest row (all arithmetic is modulo 2^(WA+WB)). Adding a node
-//           whose rows start k rows higher leaves the low k bits of the
-//           left node as they are: each adder is only as wide as the
-//           overlap plus its growth, never the full product width.
-//   edge 2  PIPELINE >= 1 only: the nodes of tree level PL = ceil(LV/2)
-//           are registered (the tree cut in the middle, so each of the two
-//           clock periods holds about half of its adders; a register after
-//           the product would leave the whole tree in one period)
-//   edge 2  (edge 3 with PIPELINE) p_q <= root of the tree (as a DSP's
-//           output register)
-//   edge 4  PIPELINE = 2 only: p_q registered once more (the latency of
-//           pluecker_mul's fabric register after the block)
+//   The WB partial-product rows r_j = b_i[j] ? a_i : 0 (signed, WA bits;
+//   tree level 0) are summed by a balanced binary tree of adders (levels
+//   1..LV, LV = ceil(log2 WB)):
+//     a*b = sum_{j<WB-1} r_j 2^j - r_{WB-1} 2^(WB-1)
+//   (the row of the sign bit of b is subtracted). A node covering c rows
+//   holds |value| <= 2^(WA-1) (2^c - 1), WA + c signed bits (WA for a
+//   single row), capped at the product bits above its lowest row (all
+//   arithmetic is modulo 2^(WA+WB)). Adding a node whose rows start k rows
+//   higher leaves the low k bits of the left node as they are: each adder
+//   is only as wide as the overlap plus its growth, never the full product
+//   width. The root is registered in p_q (as a DSP's output register);
+//   the clock edges before it register whole tree levels:
+//     PIPELINE 0  level 0 (the rows, where a DSP has its input registers;
+//                 the row AND sits in front of the flops), then p_q
+//     PIPELINE 1  also level PL = ceil(LV/2) (the tree cut in the middle:
+//                 each of the two periods holds about half of its adders)
+//     PIPELINE 2  LV >= 3: levels (LV-2)/2, LV-2 and LV-1, then p_q: for
+//                 LV = 3 the rows and levels 1 and 2, for LV = 4 (WB 9..16)
+//                 levels 1, 2 and 3 (the row AND in front of the level-1
+//                 adders), for LV = 5 levels 1, 3 and 4; at most one
+//                 adder level per period up to WB = 16.
+//                 LV < 3: as PIPELINE 1, and p_q registered once more.
+//   Latency: 2 + PIPELINE clock edges (pluecker_mul's).
 //
 // With b_i's top bit tied to zero (a non-negative operand, as the
 // intersector's directions are), the subtracted row is constant zero and
@@ -75,22 +79,24 @@ module pluecker_mul_lut #(
     width_of = w;
   endfunction
 
-  // Edge 1: the partial-product rows r_j = b_i[j] ? a_i : 0 (one LUT level
-  // in front of the registers; the adder tree alone is left for edge 2).
-  logic [WB-1:0][WA-1:0] row_q;
+  // PIPELINE 2 with LV >= 3 spreads three registers over the tree and
+  // needs no register after p_q (see the header).
+  localparam bit SPREAD = (PIPELINE == 2) && (LV >= 3);
 
-  for (genvar j = 0; j < WB; j++) begin : g_rowreg
-    always_ff @(posedge clk_i) row_q[j] <= b_i[j] ? a_i : '0;
-  end
+  // Whether the nodes of tree level l are registered (level 0: the rows).
+  function automatic bit registered(input int l);
+    if (SPREAD) registered = (l == (LV - 2) / 2) || (l == LV - 2) || (l == LV - 1);
+    else registered = (l == 0) || (PIPELINE != 0 && l == PL);
+  endfunction
 
   // Node g of level l is g_lvl[l].g_node[g].v, width_of(l, g) bits (one
-  // signal per node, read by its parent only): its sum c, registered at
-  // level PL with PIPELINE.
+  // signal per node, read by its parent only): its sum c (at level 0 the
+  // row g), registered where registered(l) says.
   for (genvar l = 0; l <= LV; l++) begin : g_lvl
     for (genvar g = 0; g < (WB + (1 << l) - 1) >> l; g++) begin : g_node
       localparam int WD = width_of(l, g);
       wire [WD-1:0] c, v;
-      if (PIPELINE != 0 && l == PL) begin : g_reg
+      if (registered(l)) begin : g_reg
         logic [WD-1:0] v_q;
         always_ff @(posedge clk_i) v_q <= c;
         assign v = v_q;
@@ -99,7 +105,7 @@ module pluecker_mul_lut #(
       end
       if (l == 0) begin : g_row
         // Row g (the sign row too: the adder tree subtracts it).
-        assign c = row_q[g];
+        assign c = b_i[g] ? a_i : '0;
       end else if (rows_of(l - 1, 2 * g + 1) == 0) begin : g_pass
         // No right child: the left child is this node (same width).
         assign c = g_lvl[l-1].g_node[2*g].v;
@@ -125,7 +131,7 @@ module pluecker_mul_lut #(
     p_q <= g_lvl[LV].g_node[0].v;
   end
 
-  if (PIPELINE > 1) begin : g_out_reg
+  if (PIPELINE > 1 && !SPREAD) begin : g_out_reg
     logic signed [W-1:0] p2_q;
     always_ff @(posedge clk_i) p2_q <= p_q;
     assign p_o = p2_q;

@@ -274,6 +274,9 @@ MUTANTS: list[Mutant] = [
            [("rtl/pluecker_mul_lut.sv", "        wire signed [WR-1:0] right = g_lvl[l-1].g_node[2*g+1].v;",
              "        wire [WR-1:0] right = g_lvl[l-1].g_node[2*g+1].v;")],
            ["harness:6x6:boundary:20000"]),
+    Mutant("mul-lut-spread-extra-register", "pluecker_mul_lut: PIPELINE 2 spread over the tree keeps the register after p_q",
+           [("rtl/pluecker_mul_lut.sv", "if (PIPELINE > 1 && !SPREAD) begin : g_out_reg", "if (PIPELINE > 1) begin : g_out_reg")],
+           ["cocotb:tb/pluecker_mul_lut/test_pluecker_mul_lut.py::test_pluecker_mul_lut[10x10_p2]"]),
     # --- model: set-up (fixed.cpp, grid.cpp) and datapath (fixed.cpp) ---------
     Mutant("model-origin-truncated", "model: origin inside R truncated (floor) instead of rounded to nearest",
            [(FIXED, "out.org[a] = static_cast<i64>(detail::round_to_grid(r.o[a], Round::Nearest, f.coord_bits));",

@@ -46,7 +46,10 @@ async def stream(dut) -> None:
     await bench.run(pairs, "stream idle=True")
 
 
-LUT_WIDTHS = [(2, 2, 0), (2, 2, 1), (3, 9, 0), (9, 3, 1), (8, 8, 0), (9, 9, 1), (7, 7, 1), (17, 17, 0), (9, 9, 2)]
+# PIPELINE 2 at every tree depth: LV = 2 (4x3), 3 (6x6), 4 (9x9, and 10x10,
+# a 9/9 cascade lane's), 5 (17x17); they place their registers differently.
+LUT_WIDTHS = [(2, 2, 0), (2, 2, 1), (3, 9, 0), (9, 3, 1), (8, 8, 0), (9, 9, 1), (7, 7, 1), (17, 17, 0),
+              (4, 3, 2), (6, 6, 2), (9, 9, 2), (10, 10, 2), (17, 17, 2)]
 
 
 @pytest.mark.parametrize("wa,wb,pipeline", LUT_WIDTHS, ids=[f"{a}x{b}_p{p}" for a, b, p in LUT_WIDTHS])
