@@ -3,7 +3,7 @@
 // drop-in for pluecker_mul with the same ports, the same product and the
 // same latency:
 //   p_o = a_i * b_i (signed WA x WB, full WA+WB-bit product),
-//   2 (+1 with PIPELINE) clock edges after a_i, b_i.
+//   2 + PIPELINE clock edges after a_i, b_i.
 //
 // It contains no `*`, so no synthesis tool can map it to a DSP block; the
 // intersector uses it at narrow widths, where twelve MULT18X18D blocks per
