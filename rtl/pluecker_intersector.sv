@@ -476,6 +476,21 @@ module pluecker_intersector #(
   logic [2:0] sb_d;
   logic [2:0] b2_d;  // B_i >= 2 (the strict origin test)
   localparam int MUL_PIPELINE = PIPELINE_OK ? PIPELINE : 0;
+  // Fabric multipliers whose row ANDs feed an adder in the same period
+  // (pluecker_mul_lut at PIPELINE 2 with 9 or more rows: its first
+  // register is after tree level 1) get their own copy of their
+  // direction's S0 register. Shared, a direction flop drives the row ANDs
+  // of the four multipliers that use it (4 x WA loads: 36 at 8/8), and that
+  // net's first wire limited the unit and the full chip (ECP5 speed 8, one
+  // unit alone, median of five seeds: 8/8 249.7 -> 266.3 MHz, 9/9 243.9 ->
+  // 267.9). The copies load the port, as dir0_q does (which then feeds
+  // only D_i + D_j + 1); the keep attribute stops Yosys from merging the
+  // identical flops. A and B stay shared (two multipliers each): copies of
+  // them take the subtract and class multiplexer's output a long way and
+  // limit S0 instead. With registered rows (PIPELINE 0 or 1, or fewer
+  // rows) the AND has a period of its own and a copy only costs: one 6/6
+  // unit 306.1 -> 292.1 MHz with them.
+  localparam bit DIR_COPIES = MUL_LUT && MUL_PIPELINE == 2 && $clog2(WDS) >= 4;
 
   for (genvar i = 0; i < 3; i++) begin : g_sign
     assign sb_d[i] = sb1_q[i];
@@ -520,10 +535,26 @@ module pluecker_intersector #(
     if (MUL_PAIR || MUL_ROM) begin : g_paired
       // The products come from g_pair or g_rom above.
     end else if (MUL_LUT) begin : g_lut
+      // The directions: with DIR_COPIES each multiplier has its own copy of
+      // its direction's S0 register (see DIR_COPIES), else dir0_q.
+      logic [D-1:0] dir_b, dir_a;
+      if (DIR_COPIES) begin : g_dir_copy
+        logic [D-1:0] dirb0_q, dira0_q;
+        (* keep *)
+        always_ff @(posedge clk_i) begin
+          dirb0_q <= ray_dir_i[I*D+:D];
+          dira0_q <= ray_dir_i[J*D+:D];
+        end
+        assign dir_b = dirb0_q;
+        assign dir_a = dira0_q;
+      end else begin : g_dir_shared
+        assign dir_b = dir0_q[I];
+        assign dir_a = dir0_q[J];
+      end
       pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_b (
-          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb2_q[k]));
+          .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir_b}), .p_o(pb2_q[k]));
       pluecker_mul_lut #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE)) u_mul_a (
-          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir0_q[J]}), .p_o(pa2_q[k]));
+          .clk_i(clk_i), .a_i(a_d[I]), .b_i({1'b0, dir_a}), .p_o(pa2_q[k]));
     end else begin : g_dsp
       pluecker_mul #(.WA(WA), .WB(WDS), .PIPELINE(MUL_PIPELINE), .ADD_STAGES(MUL_ADD)) u_mul_b (
           .clk_i(clk_i), .a_i(b_d[J]), .b_i({1'b0, dir0_q[I]}), .p_o(pb2_q[k]));

@@ -277,6 +277,9 @@ MUTANTS: list[Mutant] = [
     Mutant("mul-lut-spread-extra-register", "pluecker_mul_lut: PIPELINE 2 spread over the tree keeps the register after p_q",
            [("rtl/pluecker_mul_lut.sv", "if (PIPELINE > 1 && !SPREAD) begin : g_out_reg", "if (PIPELINE > 1) begin : g_out_reg")],
            ["cocotb:tb/pluecker_mul_lut/test_pluecker_mul_lut.py::test_pluecker_mul_lut[10x10_p2]"]),
+    Mutant("rtl-dir-copy-wrong-axis", "RTL: a fabric multiplier's own direction copy (DIR_COPIES) loads the other axis",
+           [(RTL, "dira0_q <= ray_dir_i[J*D+:D];", "dira0_q <= ray_dir_i[I*D+:D];")],
+           ["cocotb:tb/pluecker_intersector/test_pluecker_intersector.py::test_pluecker_intersector[c8_d8_p2_cons]"]),
     # --- model: set-up (fixed.cpp, grid.cpp) and datapath (fixed.cpp) ---------
     Mutant("model-origin-truncated", "model: origin inside R truncated (floor) instead of rounded to nearest",
            [(FIXED, "out.org[a] = static_cast<i64>(detail::round_to_grid(r.o[a], Round::Nearest, f.coord_bits));",

@@ -190,7 +190,7 @@ SHORT = [
     (16, 16, 1, "dsp-ecp5", 0, 0.25),  # LATENCY 6, one MULT18X18D per product
     (24, 24, 0, "dsp-ecp5", 0, 0.25),  # LATENCY 8, nearest at a wide width, DSP with both operands split
     (16, 16, 1, "dsp-ecp5", 2, 0.25),  # LATENCY 8: PIPELINE = 2, a fabric register after every MULT18X18D
-    (8, 8, 1, "auto", 2, 0.25),       # LATENCY 8: PIPELINE = 2 in fabric (tree cut, output register)
+    (8, 8, 1, "auto", 2, 0.25),       # LATENCY 8: PIPELINE = 2 in fabric (registers spread over the tree, DIR_COPIES)
     (6, 6, 1, "dsp-ecp5", 2, 0.25),   # LATENCY 8: PIPELINE = 2, two products per MULT18X18D (paired)
     (6, 6, 1, "rom-ecp5", 2, 0.25),   # LATENCY 8: every product from a DP16KD table
     (6, 6, 0, "rom", 2, 0.25),        # LATENCY 8: the same tables on the generic path, nearest
