@@ -529,7 +529,8 @@ module pluecker_intersector #(
   for (genvar k = 0; k < 6; k++) begin : g_mul
     localparam int I = pair_i(k);
     localparam int J = pair_j(k);
-    // Operands from the S0 registers (a_d, b_d, dir0_q), registered inside the
+    // Operands from the S0 registers (a_d, b_d, dir0_q; with DIR_COPIES the
+    // direction from the multiplier's own copy), registered inside the
     // multiplier (as S1), product registered inside it (as S2).
     // Same ports and latency in every style.
     if (MUL_PAIR || MUL_ROM) begin : g_paired
