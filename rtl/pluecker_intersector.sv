@@ -489,7 +489,8 @@ module pluecker_intersector #(
   // them take the subtract and class multiplexer's output a long way and
   // limit S0 instead. With registered rows (PIPELINE 0 or 1, or fewer
   // rows) the AND has a period of its own and a copy only costs: one 6/6
-  // unit 306.1 -> 292.1 MHz with them.
+  // unit 306.1 -> 292.1 MHz with them. The condition is
+  // !registered(0) of pluecker_mul_lut (LV = $clog2(WDS)).
   localparam bit DIR_COPIES = MUL_LUT && MUL_PIPELINE == 2 && $clog2(WDS) >= 4;
 
   for (genvar i = 0; i < 3; i++) begin : g_sign

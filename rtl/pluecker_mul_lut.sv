@@ -84,6 +84,10 @@ module pluecker_mul_lut #(
   localparam bit SPREAD = (PIPELINE == 2) && (LV >= 3);
 
   // Whether the nodes of tree level l are registered (level 0: the rows).
+  // pluecker_intersector's DIR_COPIES mirrors !registered(0) (PIPELINE 2,
+  // LV >= 4): where the row ANDs feed an adder in the same period, each
+  // multiplier gets its own copy of its direction register. Keep the two
+  // in step.
   function automatic bit registered(input int l);
     if (SPREAD) registered = (l == (LV - 2) / 2) || (l == LV - 2) || (l == LV - 1);
     else registered = (l == 0) || (PIPELINE != 0 && l == PL);
