@@ -489,9 +489,11 @@ module pluecker_intersector #(
   // them take the subtract and class multiplexer's output a long way and
   // limit S0 instead. With registered rows (PIPELINE 0 or 1, or fewer
   // rows) the AND has a period of its own and a copy only costs: one 6/6
-  // unit 306.1 -> 292.1 MHz with them. The condition is
-  // !registered(0) of pluecker_mul_lut (LV = $clog2(WDS)).
-  localparam bit DIR_COPIES = MUL_LUT && MUL_PIPELINE == 2 && $clog2(WDS) >= 4;
+  // unit 306.1 -> 292.1 MHz with them. So the copies go exactly where the
+  // multiplier's rows are not registered (PIPELINE 2 and 9 or more rows),
+  // by the rule the multiplier itself follows.
+  localparam bit DIR_COPIES = MUL_LUT && !pluecker_mul_lut_pkg::mul_lut_registered(
+      MUL_PIPELINE, pluecker_mul_lut_pkg::mul_lut_levels(WDS), 0);
 
   for (genvar i = 0; i < 3; i++) begin : g_sign
     assign sb_d[i] = sb1_q[i];

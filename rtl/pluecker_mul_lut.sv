@@ -32,7 +32,8 @@
 //                 adders), for LV = 5 levels 1, 3 and 4; at most one
 //                 adder level per period up to WB = 16.
 //                 LV < 3: as PIPELINE 1, and p_q registered once more.
-//   Latency: 2 + PIPELINE clock edges (pluecker_mul's).
+//   Latency: 2 + PIPELINE clock edges (pluecker_mul's). Which levels are
+//   registered is one rule, in pluecker_mul_lut_pkg.sv.
 //
 // With b_i's top bit tied to zero (a non-negative operand, as the
 // intersector's directions are), the subtracted row is constant zero and
@@ -57,8 +58,7 @@ module pluecker_mul_lut #(
   end
 
   localparam int W = WA + WB;  // product bits
-  localparam int LV = $clog2(WB);  // tree levels above the rows
-  localparam int PL = (LV + 1) / 2;  // PIPELINE: the registered level (1..LV)
+  localparam int LV = pluecker_mul_lut_pkg::mul_lut_levels(WB);  // tree levels above the rows
 
   // Rows covered by node g of level l: rows g*2^l .. min((g+1)*2^l, WB) - 1.
   function automatic int rows_of(input int l, input int g);
@@ -81,16 +81,14 @@ module pluecker_mul_lut #(
 
   // PIPELINE 2 with LV >= 3 spreads three registers over the tree and
   // needs no register after p_q (see the header).
-  localparam bit SPREAD = (PIPELINE == 2) && (LV >= 3);
+  localparam bit SPREAD = pluecker_mul_lut_pkg::mul_lut_spread(PIPELINE, LV);
 
   // Whether the nodes of tree level l are registered (level 0: the rows).
-  // pluecker_intersector's DIR_COPIES mirrors !registered(0) (PIPELINE 2,
-  // LV >= 4): where the row ANDs feed an adder in the same period, each
-  // multiplier gets its own copy of its direction register. Keep the two
-  // in step.
+  // The rule lives in pluecker_mul_lut_pkg, where pluecker_intersector
+  // reads it too (DIR_COPIES: a direction register of each multiplier's
+  // own where level 0 is not registered).
   function automatic bit registered(input int l);
-    if (SPREAD) registered = (l == (LV - 2) / 2) || (l == LV - 2) || (l == LV - 1);
-    else registered = (l == 0) || (PIPELINE != 0 && l == PL);
+    registered = pluecker_mul_lut_pkg::mul_lut_registered(PIPELINE, LV, l);
   endfunction
 
   // Node g of level l is g_lvl[l].g_node[g].v, width_of(l, g) bits (one

@@ -185,11 +185,13 @@ disagrees() {  # <what> <file> <sed edit> <grep pattern> [<top>]
     rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
     sed -i "$3" "$LOG/rtl/$2"
     # The fixed-point and local units read every file; a binary32 unit its
-    # contract package and its top, the rest found with -y.
+    # contract package, the fabric multiplier's package and its top, the
+    # rest found with -y.
     local files=("$LOG"/rtl/*.sv)
     case "$top" in
         pluecker_float_intersector | pluecker_smits_intersector)
-            files=("$LOG/rtl/pluecker_contract_float_pkg.sv" -y "$LOG/rtl" "$LOG/rtl/$top.sv") ;;
+            files=("$LOG/rtl/pluecker_contract_float_pkg.sv" "$LOG/rtl/pluecker_mul_lut_pkg.sv" -y "$LOG/rtl"
+                   "$LOG/rtl/$top.sv") ;;
     esac
     if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
         note "$1" "FAIL (the edit did not apply)"
@@ -319,13 +321,14 @@ else
 fi
 
 # --- 5. The binary32 units -------------------------------------------------------------
-# Each lint run reads the float contract package and the top; Verilator finds
-# the other modules in rtl/ (-y), one module per file.
-FLOAT_PKG=rtl/pluecker_contract_float_pkg.sv
+# Each lint run reads the float contract package, the fabric multiplier's
+# package (pluecker_f32_mant_mul's fabric product) and the top; Verilator
+# finds the other modules in rtl/ (-y), one module per file.
+FLOAT_PKGS=(rtl/pluecker_contract_float_pkg.sv rtl/pluecker_mul_lut_pkg.sv)
 float_lint() {  # <what> <top> <verilator arguments...>
     local what=$1 top=$2
     shift 2
-    if verilator --lint-only -Wall "$@" --top-module "$top" rtl/lint.vlt "$FLOAT_PKG" -y rtl "rtl/$top.sv" \
+    if verilator --lint-only -Wall "$@" --top-module "$top" rtl/lint.vlt "${FLOAT_PKGS[@]}" -y rtl "rtl/$top.sv" \
         > "$LOG/f.log" 2>&1 && ! grep -qE '%(Warning|Error)' "$LOG/f.log"; then
         note "$what" ok
     else
@@ -366,7 +369,7 @@ disagrees "an adder stage the contract lacks is refused" pluecker_f32_add.sv \
 float_reject() {  # <what> <top> <grep pattern> <-G arguments...>
     local what=$1 top=$2 pattern=$3
     shift 3
-    refused "$what" "$pattern" "$@" --top-module "$top" "$FLOAT_PKG" -y rtl "rtl/$top.sv"
+    refused "$what" "$pattern" "$@" --top-module "$top" "${FLOAT_PKGS[@]}" -y rtl "rtl/$top.sv"
 }
 for top in pluecker_float_intersector pluecker_smits_intersector; do
     float_reject "verilator rejects $top TAG_BITS=0" "$top" "TAG_BITS" -GTAG_BITS=0
