@@ -80,6 +80,10 @@ mapfile -t LOCAL_SOURCES < <(ls rtl/*.sv | grep -v '/pluecker_contract_pkg.sv$')
 # after the package (pluecker_axis.sv sorts before pluecker_contract_pkg.sv).
 mapfile -t ALL_SOURCES < <(ls rtl/*_pkg.sv; ls rtl/*.sv | grep -v '_pkg.sv$')
 mapfile -t PART_SOURCES < <(ls rtl/*.sv | grep -v '_contract_pkg.sv$')
+# The packages a binary32 unit reads (its contract, and the fabric
+# multiplier's for pluecker_f32_mant_mul's fabric product); Verilator finds
+# its modules in rtl/ (-y), one module per file.
+FLOAT_PKGS=(rtl/pluecker_contract_float_pkg.sv rtl/pluecker_mul_lut_pkg.sv)
 LOG=$(mktemp -d)
 trap 'rm -rf "$LOG"' EXIT
 fail=0
@@ -184,14 +188,12 @@ disagrees() {  # <what> <file> <sed edit> <grep pattern> [<top>]
     local top=${5:-$TOP}
     rm -rf "$LOG/rtl" && cp -r rtl "$LOG/rtl"
     sed -i "$3" "$LOG/rtl/$2"
-    # The fixed-point and local units read every file; a binary32 unit its
-    # contract package, the fabric multiplier's package and its top, the
-    # rest found with -y.
+    # The fixed-point and local units read every file; a binary32 unit
+    # FLOAT_PKGS and its top, the rest found with -y (all in the copy).
     local files=("$LOG"/rtl/*.sv)
     case "$top" in
         pluecker_float_intersector | pluecker_smits_intersector)
-            files=("$LOG/rtl/pluecker_contract_float_pkg.sv" "$LOG/rtl/pluecker_mul_lut_pkg.sv" -y "$LOG/rtl"
-                   "$LOG/rtl/$top.sv") ;;
+            files=("${FLOAT_PKGS[@]/#rtl/$LOG/rtl}" -y "$LOG/rtl" "$LOG/rtl/$top.sv") ;;
     esac
     if cmp -s "rtl/$2" "$LOG/rtl/$2"; then
         note "$1" "FAIL (the edit did not apply)"
@@ -321,10 +323,8 @@ else
 fi
 
 # --- 5. The binary32 units -------------------------------------------------------------
-# Each lint run reads the float contract package, the fabric multiplier's
-# package (pluecker_f32_mant_mul's fabric product) and the top; Verilator
-# finds the other modules in rtl/ (-y), one module per file.
-FLOAT_PKGS=(rtl/pluecker_contract_float_pkg.sv rtl/pluecker_mul_lut_pkg.sv)
+# Each lint run reads FLOAT_PKGS and the top; Verilator finds the other
+# modules in rtl/ (-y), one module per file.
 float_lint() {  # <what> <top> <verilator arguments...>
     local what=$1 top=$2
     shift 2
