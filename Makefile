@@ -376,9 +376,13 @@ endif
 #             FREQ until the run stops (a rip-up that cannot end is stopped
 #             once its failing arcs have not fallen for 100 router
 #             iterations and named failed; SYNTH_FLAGS=--ripup-patience=N,
-#             0 waits forever). The best recipe measured for each chip, its
-#             Fmax and run time (4 to 26 minutes a seed): README, "Where
-#             the whole chips stand"; every chip run so far: fpga/CHIPS.md.
+#             0 waits forever). SYNTH_FLAGS=--place-first=K with SEEDS=N > K:
+#             place all N seeds without routing (minutes each), then route
+#             only the K whose placement estimates the highest Fmax
+#             (summary.json: placement_screen). The best recipe measured
+#             for each chip, its Fmax and run time (4 to 26 minutes a
+#             seed): README, "Where the whole chips stand"; every chip run
+#             so far: fpga/CHIPS.md.
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D

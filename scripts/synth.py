@@ -22,6 +22,12 @@ With --nextpnr-arg=--tmg-ripup (router2's timing-driven rip-up, which ends
 only once the target is met) a run whose failing arcs have not fallen for
 --ripup-patience router iterations (nextpnr.log, read as it grows) is
 stopped and named failed with its best count, instead of running forever.
+With --place-first K every seed is first placed without routing (nextpnr
+--no-route, whose log gives the placement's Fmax estimate; report.json has
+none) and only the K seeds with the highest estimate are routed: on a
+whole chip placement takes minutes and routing most of the run, and a
+placement that estimates low seldom routes fast (fpga/CHIPS.md). Every
+routed run's summary entry keeps its estimate too (pre_routing_mhz).
 A failed job is named and the exit status is 1; the summaries of the other
 configurations are still written, and <out>/jobs_yosys.jsonl and
 jobs_nextpnr.jsonl keep every finished job's result.
@@ -558,6 +564,54 @@ def ripup_patience(args) -> int | None:
     return args.ripup_patience if "--tmg-ripup" in args.nextpnr_args else None
 
 
+# nextpnr.log's timing summary line. A run's first one for a clock is the
+# estimate after placement, before routing: report.json holds only the
+# routed figures (and none at all after --no-route), so this one figure is
+# read from the log.
+_MAX_FREQ = re.compile(r"Max frequency for clock '([^']+)': ([0-9.]+) MHz")
+
+
+def pre_routing_fmax(log_text: str) -> dict[str, float]:
+    """Each clock's Fmax estimate after placement, before routing: the
+    first timing summary line of each clock in a nextpnr log."""
+    est: dict[str, float] = {}
+    for clk, mhz in _MAX_FREQ.findall(log_text):
+        est.setdefault(clk, float(mhz))
+    return est
+
+
+def _log_estimate(rundir: Path) -> dict[str, float]:
+    log = rundir / "nextpnr.log"
+    return pre_routing_fmax(log.read_text(errors="replace")) if log.exists() else {}
+
+
+def run_place(job: dict) -> dict:
+    """Job: one nextpnr run that places and stops (job as run_pnr's, its
+    cmd ending in --no-route); the placement's Fmax estimate per clock
+    (pre_routing_mhz), or its error."""
+    rundir: Path = job["rundir"]
+    rundir.mkdir(parents=True, exist_ok=True)
+    t0 = time.monotonic()
+    rc, last_err = run_nextpnr(job["cmd"], rundir, None)
+    out = {"speed": job["speed"], "seed": job["seed"], "seconds": round(time.monotonic() - t0, 1)}
+    est = _log_estimate(rundir)
+    if rc != 0:
+        out["error"] = f"nextpnr exit {rc}: {last_err}"
+    elif "clk_i" not in est:
+        out["error"] = f"no Fmax estimate for clk_i in {rundir / 'nextpnr.log'}"
+    else:
+        out["pre_routing_mhz"] = est
+    return out
+
+
+def best_placed(placed: list[dict], k: int) -> list[int]:
+    """The seeds of the k placements with the highest clk_i estimate (ties:
+    the lower seed), in seed order; a failed placement is never chosen."""
+    ok = sorted((r for r in placed if "error" not in r),
+                key=lambda r: (-r["pre_routing_mhz"]["clk_i"], r["seed"]))
+    return sorted(r["seed"] for r in ok[:k])
+
+
 def run_pnr(job: dict) -> dict:
     """Job: one nextpnr run (job: speed, seed, rundir, base, netlist, top,
     cmd, freq, ripup_patience: 0, or the iterations without progress after
@@ -578,6 +632,9 @@ def run_pnr(job: dict) -> dict:
     seconds = round(time.monotonic() - t0, 1)
     out = {"speed": job["speed"], "seed": job["seed"], "seconds": seconds,
            "report": str(report.relative_to(job["base"]))}
+    est = _log_estimate(rundir)
+    if est:
+        out["pre_routing_mhz"] = est
     if rc is None:
         out["error"] = watch.message(job["freq"], job.get("freq_lut"))
         out["ripup_stalled"] = {"iteration": watch.iteration, "best_iteration": watch.best_iter,
@@ -742,7 +799,8 @@ def clock_figures(runs: list[dict], fmax_key: str, path_key: str) -> tuple[dict,
     return fmax_stats([r[fmax_key] for r in runs]), dict(worst[path_key] or {}, seed=worst["seed"])
 
 
-def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict) -> dict:
+def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], tools: dict,
+                  screen: dict | None = None) -> dict:
     by_speed: dict[str, dict] = {}
     by_speed_lut: dict[str, dict] = {}
     limits: dict[str, dict] = {}
@@ -785,6 +843,7 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "critical_path": limits,
         **({"critical_path_lut": limits_lut} if two_clocks else {}),
         "runs": [{k: v for k, v in r.items() if k != "utilisation"} for r in runs],
+        **({"placement_screen": screen} if screen else {}),  # --place-first: every seed's estimate
         "pnr": not args.no_pnr,
     }
     if design.fields.get("unit") == "array":
@@ -1100,6 +1159,58 @@ def run_phase(label: str, job_list: list, args, summary) -> tuple[dict, list[str
         return e.results, [str(x) for x in e.errors]
 
 
+def pnr_job(d: Design, speed: int, seed: int, args, nextpnr: str, place_only: bool = False) -> dict:
+    """The job of one nextpnr run of design d (run_pnr's, or with place_only
+    run_place's: the same command ending in --no-route, in a folder of its
+    own)."""
+    base = Path(args.out) / d.name
+    rundir = base / "pnr" / f"speed{speed}_seed{seed}{'_placed' if place_only else ''}"
+    two = d.params.get("CLOCKS", 1) == 2
+    return {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
+            "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
+            "ripup_patience": 0 if place_only else (ripup_patience(args) or 0),
+            "freq_lut": args.freq_lut if two else None,  # two clocks: run_pnr writes clocks.lpf
+            "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
+                               args.router, args.placer,
+                               tuple(args.nextpnr_args) + (("--no-route",) if place_only else ()),
+                               "clocks.lpf" if two else None)}
+
+
+def place_line(r: dict) -> str:
+    return (f"FAILED ({r['error']})" if "error" in r
+            else f"placed, {r['pre_routing_mhz']['clk_i']:.1f} MHz before routing")
+
+
+def place_first(built: list[Design], args, nextpnr: str) -> tuple[dict, dict, list[str]]:
+    """--place-first K: every seed placed without routing, then the K seeds
+    with the highest estimate of each design and speed grade chosen for
+    routing. Returns those seeds by (design, speed), each design's screen
+    for its summary, and the failed placements."""
+    say(f"synth: placing seeds {args.seeds_text} first (nextpnr --no-route), at speeds {args.speeds}")
+    place_jobs, of = [], {}
+    for d in built:
+        for speed in args.speed_list:
+            for seed in args.seed_list:
+                name = f"{d.name} speed{speed} seed{seed} placed"
+                place_jobs.append(jobs.Job(name, "synth:run_place", (pnr_job(d, speed, seed, args, nextpnr, True),)))
+                of[name] = (d.name, speed)
+    placed, errors = run_phase("place", place_jobs, args, place_line)
+    errors += [f"{name}: {r['error']}" for name, r in placed.items() if "error" in r]
+    seeds_of, screens = {}, {}
+    for d in built:
+        for speed in args.speed_list:
+            rs = sorted((r for n, r in placed.items() if of[n] == (d.name, speed)), key=lambda r: r["seed"])
+            chosen = best_placed(rs, args.place_first)
+            seeds_of[(d.name, speed)] = chosen
+            screens.setdefault(d.name, {"routed_best": args.place_first, "by_speed": {}})["by_speed"][str(speed)] = {
+                "placed": [{k: r[k] for k in ("seed", "seconds", "pre_routing_mhz", "error") if k in r} for r in rs],
+                "routed_seeds": chosen}
+            est = ", ".join(f"{r['seed']}: {r['pre_routing_mhz']['clk_i']:.1f}" for r in rs if "error" not in r)
+            say(f"[{d.name}] speed {speed}: routing seeds {', '.join(map(str, chosen)) or 'none'} "
+                f"(estimates before routing, MHz by seed: {est or 'none'})")
+    return seeds_of, screens, errors
+
+
 def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: str, nextpnr: str | None,
          sources: list[Path]) -> tuple[list[dict], list[str]]:
     """Yosys for every configuration, then nextpnr for every configuration x
@@ -1111,27 +1222,23 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
                                        for spec, d in zip(specs, designs)], args, synth_line)
     built = [d for d in designs if d.name in done]
     runs: dict[str, list] = {d.name: [] for d in built}
+    screens: dict[str, dict] = {}
     if not args.no_pnr and built:
+        seeds_of = {(d.name, speed): args.seed_list for d in built for speed in args.speed_list}
+        if args.place_first:
+            seeds_of, screens, place_errors = place_first(built, args, nextpnr)
+            errors += place_errors
         say(f"synth: nextpnr at speeds {args.speeds}, seeds {args.seeds_text}, target {args.freq:g} MHz"
-            + (f" (fabric units' clock {args.freq_lut:g} MHz)" if args.clocks == 2 else ""))
+            + (f" (fabric units' clock {args.freq_lut:g} MHz)" if args.clocks == 2 else "")
+            + (f", routing the best {args.place_first} placements" if args.place_first else ""))
         pnr_jobs, of_design = [], {}
         for d in built:
-            base = Path(args.out) / d.name
-            two = d.params.get("CLOCKS", 1) == 2
             for speed in args.speed_list:
-                for seed in args.seed_list:
-                    rundir = base / "pnr" / f"speed{speed}_seed{seed}"
-                    job = {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
-                           "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
-                           "ripup_patience": ripup_patience(args) or 0,
-                           "freq_lut": args.freq_lut if two else None,  # two clocks: run_pnr writes clocks.lpf
-                           "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
-                                               args.router, args.placer, tuple(args.nextpnr_args),
-                                               "clocks.lpf" if two else None)}
+                for seed in seeds_of[(d.name, speed)]:
                     name = f"{d.name} speed{speed} seed{seed}"
-                    pnr_jobs.append(jobs.Job(name, "synth:run_pnr", (job,)))
+                    pnr_jobs.append(jobs.Job(name, "synth:run_pnr", (pnr_job(d, speed, seed, args, nextpnr),)))
                     of_design[name] = d.name
-        pnr, pnr_errors = run_phase("nextpnr", pnr_jobs, args, pnr_line)
+        pnr, pnr_errors = run_phase("nextpnr", pnr_jobs, args, pnr_line) if pnr_jobs else ({}, [])
         errors += pnr_errors
         for name, r in pnr.items():
             runs[of_design[name]].append(r)
@@ -1139,7 +1246,7 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
     for d in built:
         base = Path(args.out) / d.name
         rs = sorted(runs[d.name], key=lambda r: (r["speed"], r["seed"]))
-        summaries.append(write_summary(base, d, args, done[d.name]["ys"], rs, tools))
+        summaries.append(write_summary(base, d, args, done[d.name]["ys"], rs, tools, screens.get(d.name)))
         say(f"[{d.name}] summary: {base / 'summary.json'}")
     return summaries, errors
 
@@ -1193,6 +1300,13 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                    help="with --nextpnr-arg=--tmg-ripup: stop a run whose rip-up has not lowered its failing "
                         "arcs for N router iterations (the target is then out of reach: router2 never ends "
                         "there) and name it failed; 0: never stop (default %(default)s)")
+    p.add_argument("--place-first", type=int, default=0, metavar="K",
+                   help="place every seed of --seeds without routing first (nextpnr --no-route: minutes on a "
+                        "whole chip, where routing takes most of the run), then route only the K seeds whose "
+                        "placement promises the highest Fmax (nextpnr's estimate before routing; the "
+                        "summary keeps every seed's estimate, and its Fmax median is of the routed seeds "
+                        "only, so a unit's median over seeds wants every seed routed); 0: route every "
+                        "seed (default)")
     p.add_argument("--jobs", type=int, default=2,
                    help=f"Yosys or nextpnr runs at a time on this machine (max {MAX_PARALLEL})")
     p.add_argument("--no-pnr", action="store_true", help="Yosys only: utilisation, no Fmax")
@@ -1243,6 +1357,15 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error(f"--seeds: {e}")
     args.seeds_text = (f"1..{args.seed_list[-1]}" if args.seed_list == list(range(1, len(args.seed_list) + 1))
                        else ",".join(map(str, args.seed_list)))
+    if args.place_first < 0:
+        p.error(f"--place-first: {args.place_first} is not a number of seeds to route (0 = route every seed)")
+    if args.place_first and args.no_pnr:
+        p.error("--place-first chooses seeds to route: it needs place and route (not --no-pnr)")
+    if args.place_first and args.place_first >= len(args.seed_list):
+        p.error(f"--place-first {args.place_first}: routes the best {args.place_first} of the placed seeds, "
+                f"so --seeds must give more than {args.place_first} (it gives {len(args.seed_list)})")
+    if args.place_first and args.clocks == 2:
+        p.error("--place-first ranks placements by clk_i's estimate: one clock only (not --clocks 2)")
     if args.ripup_patience < 0:
         p.error(f"--ripup-patience: {args.ripup_patience} is not a number of iterations (0 = never stop)")
     for flag in args.synth_flags:

@@ -496,3 +496,70 @@ def test_ripup_stall_stops_nextpnr(tmp_path):
     r = synth.run_pnr(job)
     assert r["error"] == "nextpnr exit 3: ERROR: fake nextpnr wrote no report", r
     assert "ripup_stalled" not in r
+
+
+def test_pre_routing_estimate_and_best_placed():
+    """The estimate after placement is each clock's first timing summary
+    line of nextpnr.log (a routed run's later lines are the routed
+    figures); best_placed routes the seeds with the highest clk_i estimate,
+    the lower seed on a tie, never a failed placement (no tools)."""
+    log = ("Info: Max frequency for clock 'clk_i': 319.80 MHz (PASS at 290.00 MHz)\n"
+           "Info: Max frequency for clock 'clk_lut_i': 201.5 MHz (FAIL at 250.00 MHz)\n"
+           "Info: Routing globals...\n"
+           "Warning: Max frequency for clock 'clk_i': 289.44 MHz (FAIL at 290.00 MHz)\n")
+    assert synth.pre_routing_fmax(log) == {"clk_i": 319.8, "clk_lut_i": 201.5}
+    assert synth.pre_routing_fmax("Info: Routing globals...\n") == {}
+
+    def placed(seed, mhz=None):
+        return {"seed": seed, **({"pre_routing_mhz": {"clk_i": mhz}} if mhz else {"error": "nextpnr exit 1"})}
+
+    runs = [placed(1, 300.0), placed(2, 320.0), placed(3), placed(4, 300.0), placed(5, 310.0)]
+    assert synth.best_placed(runs, 1) == [2]
+    assert synth.best_placed(runs, 2) == [2, 5]
+    assert synth.best_placed(runs, 3) == [1, 2, 5]  # 1 before 4 on the tie
+    assert synth.best_placed(runs, 5) == [1, 2, 4, 5]  # never the failed seed 3
+    assert synth.best_placed([placed(1)], 1) == []
+
+
+def test_place_first_refused(capsys):
+    """--place-first K needs more than K seeds, place and route, one clock
+    and K >= 0 (no tools)."""
+    for argv, why in ((["--seeds", "2", "--place-first", "2"], "--seeds must give more than 2 (it gives 2)"),
+                      (["--seeds", "3", "--place-first", "1", "--no-pnr"], "it needs place and route"),
+                      (["--seeds", "3", "--place-first", "-1"], "is not a number of seeds to route"),
+                      (["--array", "1x1", "--clocks", "2", "--seeds", "3", "--place-first", "1"], "one clock only")):
+        with pytest.raises(SystemExit):
+            synth.parse_args(argv)
+        assert why in capsys.readouterr().err
+    assert synth.parse_args(["--seeds", "3", "--place-first", "2"]).place_first == 2
+    assert synth.parse_args([]).place_first == 0
+
+
+def test_place_first(tmp_path):
+    """--place-first 1 of three seeds (one 6/6 unit on MULT18X18D, speed
+    8): every seed placed without routing, its estimate in the summary; only
+    the seed with the highest estimate routed, and its routed run placed as
+    its screen did (nextpnr is deterministic: the same estimate)."""
+    reason = _tools_missing()
+    if reason:
+        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--widths", "6x6", "--mul-style", "dsp",
+                          "--pipeline", "2", "--seeds", "3", "--speeds", "8", "--place-first", "1",
+                          "--out", str(tmp_path)], capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --place-first failed:\n{res.stdout}\n{res.stderr}"
+    base = tmp_path / "6x6_dsp_p2"
+    s = json.loads((base / "summary.json").read_text())
+    screen = s["placement_screen"]
+    assert screen["routed_best"] == 1
+    placed = screen["by_speed"]["8"]["placed"]
+    assert [r["seed"] for r in placed] == [1, 2, 3] and all(r["pre_routing_mhz"]["clk_i"] > 0 for r in placed)
+    best = max(placed, key=lambda r: (r["pre_routing_mhz"]["clk_i"], -r["seed"]))
+    assert screen["by_speed"]["8"]["routed_seeds"] == [best["seed"]]
+    (run,) = s["runs"]
+    assert run["seed"] == best["seed"] and "error" not in run and run["fmax"] > 0, run
+    assert run["pre_routing_mhz"] == best["pre_routing_mhz"], (run, best)
+    assert s["fmax_mhz"]["8"]["seeds"] == 1
+    for r in placed:  # placed, never routed
+        log = (base / "pnr" / f"speed8_seed{r['seed']}_placed" / "nextpnr.log").read_text()
+        assert "Routing" not in log, log[-2000:]
+    assert f"routing seeds {best['seed']} (estimates before routing" in res.stdout, res.stdout
