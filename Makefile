@@ -377,9 +377,10 @@ endif
 #             once its failing arcs have not fallen for 100 router
 #             iterations and named failed; SYNTH_FLAGS=--ripup-patience=N,
 #             0 waits forever). SYNTH_FLAGS=--place-first=K with SEEDS=N > K:
-#             place all N seeds without routing (minutes each), then route
-#             only the K whose placement estimates the highest Fmax
-#             (summary.json: placement_screen). The best recipe measured
+#             place all N seeds without routing, then route only the K
+#             whose placement estimates the highest Fmax (summary.json:
+#             placement_screen; saves time where routing is most of a run,
+#             as on the fabric chips). The best recipe measured
 #             for each chip, its Fmax and run time (4 to 26 minutes a
 #             seed): README, "Where the whole chips stand"; every chip run
 #             so far: fpga/CHIPS.md.

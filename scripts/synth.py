@@ -24,10 +24,12 @@ only once the target is met) a run whose failing arcs have not fallen for
 stopped and named failed with its best count, instead of running forever.
 With --place-first K every seed is first placed without routing (nextpnr
 --no-route, whose log gives the placement's Fmax estimate; report.json has
-none) and only the K seeds with the highest estimate are routed: on a
-whole chip placement takes minutes and routing most of the run, and a
-placement that estimates low seldom routes fast (fpga/CHIPS.md). Every
-routed run's summary entry keeps its estimate too (pre_routing_mhz).
+none) and only the K seeds with the highest estimate are routed: a
+placement that estimates low seldom routes fast (fpga/CHIPS.md). It saves
+time where routing is most of a run (the fabric chips: the 20 x 8/8 chip
+places in about 3 of its 11-17 nextpnr minutes), little where placement
+is (the 26 x 6/6 DSP chip: about 3 of 3-5). Every routed run's summary
+entry keeps its estimate too (pre_routing_mhz).
 A failed job is named and the exit status is 1; the summaries of the other
 configurations are still written, and <out>/jobs_yosys.jsonl and
 jobs_nextpnr.jsonl keep every finished job's result.
@@ -1301,8 +1303,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "arcs for N router iterations (the target is then out of reach: router2 never ends "
                         "there) and name it failed; 0: never stop (default %(default)s)")
     p.add_argument("--place-first", type=int, default=0, metavar="K",
-                   help="place every seed of --seeds without routing first (nextpnr --no-route: minutes on a "
-                        "whole chip, where routing takes most of the run), then route only the K seeds whose "
+                   help="place every seed of --seeds without routing first (nextpnr --no-route), then route "
+                        "only the K seeds whose "
                         "placement promises the highest Fmax (nextpnr's estimate before routing; the "
                         "summary keeps every seed's estimate, and its Fmax median is of the routed seeds "
                         "only, so a unit's median over seeds wants every seed routed); 0: route every "
