@@ -1304,8 +1304,8 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                         "there) and name it failed; 0: never stop (default %(default)s)")
     p.add_argument("--place-first", type=int, default=0, metavar="K",
                    help="place every seed of --seeds without routing first (nextpnr --no-route), then route "
-                        "only the K seeds whose "
-                        "placement promises the highest Fmax (nextpnr's estimate before routing; the "
+                        "only the K seeds whose placement promises the highest Fmax (nextpnr's estimate before "
+                        "routing; the "
                         "summary keeps every seed's estimate, and its Fmax median is of the routed seeds "
                         "only, so a unit's median over seeds wants every seed routed); 0: route every "
                         "seed (default)")
