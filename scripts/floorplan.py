@@ -1,6 +1,14 @@
-"""DSP floorplan for whole-chip runs: each unit's MULT18X18D blocks side by
-side on the LFE5U-85F, so that the placer can put the unit's fabric next to
-all of them.
+"""Floorplans for whole-chip runs on the LFE5U-85F.
+
+dsp: each unit's MULT18X18D blocks side by side, so that the placer can
+put the unit's fabric next to all of them.
+
+grid: each unit without MULT18X18D (fabric or table multipliers) gets a
+region of a grid over the logic tiles, and a few of its flip-flops are
+pinned at the region's centre (`anchor_units`). Nothing else of the unit
+is pinned: the anchors only give each unit a place of its own. Without
+them every unit of a chip of independent lanes has the same quadratic
+solution, and HeAP spreads them from one point into each other.
 
 Left alone, nextpnr's placer spreads a unit's twelve MULT18X18D along the
 DSP rows, and the fabric that feeds and reads them cannot be near all of
@@ -18,6 +26,7 @@ products); a MULT18X18D elsewhere is refused by name.
 from __future__ import annotations
 
 import json
+import math
 import re
 from collections import defaultdict
 from pathlib import Path
@@ -29,6 +38,14 @@ from pathlib import Path
 DSP_ROWS_85F = (10, 34, 58)
 DSP_SLICE_X_85F = (4, 13, 22, 31, 40, 49, 58, 69, 78, 87, 96, 105, 114)
 _SLICE = ((0, 0), (1, 1), (4, 4), (5, 5))  # (X offset, MULT18_<n>)
+
+
+# LFE5U-85F logic (PLC) tiles as nextpnr-ecp5 names their slices: columns
+# 2-124, rows 2-93 except the block-RAM and DSP rows (every twelfth from 10),
+# found by pinning flip-flops to every column and row.
+PLC_X_85F = tuple(range(2, 125))
+PLC_Y_85F = tuple(y for y in range(2, 94) if (y - 10) % 12)
+ANCHORS = 4  # flip-flops a unit pinned at its region's centre (grid), one a slice of its tile
 
 
 class FloorplanError(ValueError):
@@ -118,3 +135,119 @@ def pin_units(netlist: Path, top: str) -> dict[str, list[str]]:
         g = unit_of(n)
         spans.setdefault(g, [site, site])[1] = site
     return spans
+
+
+# --- grid: anchors for units without MULT18X18D ---------------------------
+
+_ARRAY_UNIT = re.compile(r"^(.*?\.g_unit\[\d+\]\.u_unit)\.")
+
+
+def array_unit_of(name: str) -> str | None:
+    """The array unit ('<...>.g_unit[i].u_unit') a cell belongs to, or
+    None for the harness and the array's own cells."""
+    m = _ARRAY_UNIT.match(name)
+    return m.group(1) if m else None
+
+
+def grid_shape(n: int) -> tuple[int, int]:
+    """Columns and rows of a grid of at least n regions over the logic
+    tiles, the shape that minimises |log(a region's width / height)| + 2 x
+    (empty regions) / n: square regions, few of them empty (20 and 17
+    units both take 5 x 4 regions; 17 x 1 would be too narrow)."""
+    if n < 1:
+        raise FloorplanError(f"a grid of {n} regions")
+    w, h = len(PLC_X_85F), PLC_Y_85F[-1] - PLC_Y_85F[0] + 1
+    best = None
+    for cols in range(1, min(n, w) + 1):
+        rows = -(-n // cols)
+        if rows > h:
+            continue
+        cost = abs(math.log((w / cols) / (h / rows))) + 2.0 * (cols * rows - n) / n
+        if best is None or cost < best[0] - 1e-12:
+            best = (cost, (cols, rows))
+    if best is None:
+        raise FloorplanError(f"{n} regions do not fit the LFE5U-85F's logic tiles")
+    return best[1]
+
+
+def _snap_row(y: float) -> int:
+    return min(PLC_Y_85F, key=lambda r: (abs(r - y), r))
+
+
+def grid_centres(n: int) -> list[tuple[int, int]]:
+    """The centre tiles (X, Y) of n regions, row by row, every other row
+    right to left (neighbouring units in neighbouring regions); each centre
+    on a logic row."""
+    cols, rows = grid_shape(n)
+    x0, w = PLC_X_85F[0], len(PLC_X_85F)
+    y0, h = PLC_Y_85F[0], PLC_Y_85F[-1] - PLC_Y_85F[0] + 1
+    out = []
+    for r in range(rows):
+        xs = [x0 + int((c + 0.5) * w / cols) for c in range(cols)]
+        if r % 2:
+            xs.reverse()
+        y = _snap_row(y0 + (r + 0.5) * h / rows)
+        out += [(x, y) for x in xs]
+    return out[:n]
+
+
+def anchor_cells(ffs: list[str], k: int = ANCHORS) -> list[str]:
+    """k of a unit's flip-flops, evenly spaced in natural name order, so
+    that the anchors come from different parts of the unit."""
+    if len(ffs) < k:
+        raise FloorplanError(f"{len(ffs)} flip-flops in a unit, {k} anchors wanted")
+    ordered = sorted(ffs, key=_natural)
+    return [ordered[(2 * i + 1) * len(ordered) // (2 * k)] for i in range(k)]
+
+
+def _plain_copy(cell: dict, ff_q: set) -> bool:
+    """A flip-flop loaded from a flip-flop, with no set/reset or clock
+    enable signal. nextpnr refuses the BEL of one that a CCU2C or LUT4
+    feeds (it packs the two together) and, as measured on the 20 x 8/8
+    chip, of one with a set/reset signal; clock enables are left out too."""
+    conn = cell["connections"]
+    if not conn.get("DI") or not set(conn["DI"]) <= ff_q:
+        return False
+    return all(isinstance(b, str) for port in ("LSR", "CE") for b in conn.get(port, []))  # constants only
+
+
+def anchor_units(netlist: Path, top: str, k: int = ANCHORS) -> dict[str, str]:
+    """Writes a BEL attribute on k flip-flops of each array unit without
+    MULT18X18D (in place), the unit's anchors at the centre tile of its
+    grid region (one a slice, SLICEA-D FF0); returns each unit's tile. The
+    anchors are plain register-to-register flip-flops (pipeline copies),
+    which nextpnr places on their own."""
+    if not 1 <= k <= 4:
+        raise FloorplanError(f"{k} anchors a unit: 1 to 4 (one a slice of the centre tile)")
+    with open(netlist) as f:
+        data = json.load(f)
+    if top not in data.get("modules", {}):
+        raise FloorplanError(f"{netlist}: no module '{top}'")
+    cells = data["modules"][top]["cells"]
+    ff_q = {bit for c in cells.values() if c["type"] == "TRELLIS_FF" for bit in c["connections"].get("Q", [])}
+    ffs: dict[str, list[str]] = defaultdict(list)
+    every, with_dsp = set(), set()
+    for n, c in cells.items():
+        u = array_unit_of(n)
+        if u is None:
+            continue
+        every.add(u)
+        if c["type"] == "TRELLIS_FF" and _plain_copy(c, ff_q):
+            ffs[u].append(n)
+        elif c["type"] == "MULT18X18D":
+            with_dsp.add(u)
+    units = sorted(every - with_dsp, key=_natural)
+    if not units:
+        raise FloorplanError(f"{netlist}: no array unit without MULT18X18D ('<...>.g_unit[i].u_unit') to anchor; "
+                             "--floorplan dsp pins the MULT18X18D of the others")
+    tiles: dict[str, str] = {}
+    for u, (x, y) in zip(units, grid_centres(len(units))):
+        if len(ffs[u]) < k:
+            raise FloorplanError(f"unit '{u}' has {len(ffs[u])} register-to-register flip-flops without "
+                                 f"set/reset or enable, {k} anchors wanted")
+        for slot, n in zip("ABCD", anchor_cells(ffs[u], k)):
+            cells[n].setdefault("attributes", {})["BEL"] = f"X{x}/Y{y}/SLICE{slot}.FF0"
+        tiles[u] = f"X{x}/Y{y}"
+    with open(netlist, "w") as f:
+        json.dump(data, f)
+    return tiles

@@ -66,7 +66,9 @@ out/synth/cascade_[<M>x]<N>_<C>x<D>_<WC>x<WD>[_w<W>]/. Whole chips take
 two more options (`make chip` sets both): --rst-stages K, a reset tree of K
 flops per unit (per cascade) so that no reset net spans the die (folder
 suffix _r<K>), and --floorplan dsp, each unit's MULT18X18D on consecutive
-sites of the DSP rows (scripts/floorplan.py; suffix _fp). --clocks 2 (a
+sites of the DSP rows (scripts/floorplan.py; suffix _fp), or --floorplan
+grid (--array), as dsp and each unit without MULT18X18D anchored in a
+region of its own by four pinned flip-flops (suffix _grid). --clocks 2 (a
 mixed --array only) puts the fabric units on a clock of their own
 (clk_lut_i; the DSP units stay on clk_i), so that each kind runs at its own
 Fmax: nextpnr gets one target per clock (--freq, --freq-lut; an LPF file
@@ -833,8 +835,9 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "synth_flags": args.synth_flags,
         "nextpnr_args": args.nextpnr_args,
         **({"ripup_patience": ripup_patience(args)} if ripup_patience(args) is not None else {}),
-        "floorplan": args.floorplan if "floorplan" in ys else "none",
+        "floorplan": args.floorplan if "floorplan" in ys or "anchors" in ys else "none",
         **({"dsp_sites": ys["floorplan"]} if "floorplan" in ys else {}),  # per unit: first, last site
+        **({"anchor_tiles": ys["anchors"]} if "anchors" in ys else {}),  # per unit: its anchors' tile
         "tools": tools,
         "yosys_seconds": ys["seconds"],
         "utilisation": u,
@@ -1112,6 +1115,8 @@ def design_of(spec: tuple, args) -> Design:
         d.name += f"_r{args.rst_stages}"
     if args.floorplan == "dsp" and d.row.get("mult18x18d"):  # nothing to pin without MULT18X18D
         d.name += "_fp"
+    if args.floorplan == "grid":  # --array only (parse_args)
+        d.name += "_grid"
     if "name" in d.fields:  # the summary's name is the folder's (make chip-effective tells chips by it)
         d.fields["name"] = d.name
     return d
@@ -1131,11 +1136,14 @@ def synth_one(spec: tuple, args, yosys: str, sources: list[Path]) -> dict:
     if cells.get("DP16KD", 0) < design.row.get("dp16kd", 0):
         raise FlowError(f"{cells.get('DP16KD', 0)} DP16KD in the netlist, the port contract's table "
                         f"multipliers need {design.row['dp16kd']}")
-    if args.floorplan == "dsp" and cells.get("MULT18X18D", 0):
-        try:
-            ys["floorplan"] = floorplan.pin_units(Path(args.out) / design.name / "netlist.json", design.top)
-        except floorplan.FloorplanError as e:
-            raise FlowError(f"--floorplan dsp: {e}") from None
+    netlist = Path(args.out) / design.name / "netlist.json"
+    try:
+        if args.floorplan in ("dsp", "grid") and cells.get("MULT18X18D", 0):
+            ys["floorplan"] = floorplan.pin_units(netlist, design.top)
+        if args.floorplan == "grid":
+            ys["anchors"] = floorplan.anchor_units(netlist, design.top)
+    except floorplan.FloorplanError as e:
+        raise FlowError(f"--floorplan {args.floorplan}: {e}") from None
     return {"ys": ys, "row": design.row}
 
 
@@ -1289,10 +1297,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
                    help="--array, --cascade: RST_STAGES, a reset tree of K flops per unit (per cascade) in "
                         "front of its rst_i, so that no reset net spans a whole chip; adds _r<K> to the "
                         "output folder's name")
-    p.add_argument("--floorplan", choices=("none", "dsp"), default="none",
+    p.add_argument("--floorplan", choices=("none", "dsp", "grid"), default="none",
                    help="dsp: each unit's MULT18X18D on consecutive sites of the DSP rows (BEL attributes, "
                         "scripts/floorplan.py), so its fabric can sit next to all of them; adds _fp to the "
-                        "output folder's name")
+                        "output folder's name. grid (--array): as dsp, and each unit without MULT18X18D "
+                        f"gets a region of a grid over the die, {floorplan.ANCHORS} of its flip-flops pinned "
+                        "at the region's centre; adds _grid")
     p.add_argument("--synth-flag", dest="synth_flags", action="append", default=[], metavar="FLAG",
                    help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (the "
                         "output FIFOs in DP16KD block RAM instead of LUT RAM) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")
@@ -1341,6 +1351,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error("--clocks 2 is for a mixed --array (DSP units on clk_i, fabric units on clk_lut_i)")
     if args.freq_lut is not None and args.clocks != 2:
         p.error("--freq-lut is the target of the fabric units' clock: give --clocks 2 too")
+    if args.floorplan == "grid" and not args.array:
+        p.error("--floorplan grid anchors the units of an --array chip (--floorplan dsp pins the MULT18X18D "
+                "of other designs)")
     if args.freq_lut is None:
         args.freq_lut = args.freq
     if args.freq <= 0 or args.freq_lut <= 0:

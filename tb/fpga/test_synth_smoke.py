@@ -88,19 +88,21 @@ def test_array_smoke(tmp_path):
     Placed by nextpnr's static placer (--placer static; the unit smoke run
     above uses heap), with one option passed through to nextpnr
     (--nextpnr-arg, here its per-net timing in report.json), and the DSP
-    unit's blocks pinned by the floorplan (--floorplan dsp: nextpnr takes
-    the twelve BEL names and places the blocks there, as the design it
-    writes, --nextpnr-arg=--write=placed.json, shows)."""
+    unit's blocks pinned by the floorplan (--floorplan grid, which pins
+    MULT18X18D as --floorplan dsp does: nextpnr takes the twelve BEL names
+    and places the blocks there, as the design it writes,
+    --nextpnr-arg=--write=placed.json, shows; and the fabric unit's four
+    anchor flip-flops, where nextpnr puts them too)."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--array", "1x1", "--coord-bits", "8",
                           "--dir-bits", "8", "--smoke", "--placer", "static",
                           "--nextpnr-arg=--detailed-timing-report", "--nextpnr-arg=--write=placed.json",
-                          "--floorplan", "dsp", "--out", str(tmp_path)],
+                          "--floorplan", "grid", "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --array failed:\n{res.stdout}\n{res.stderr}"
-    s = json.loads((tmp_path / "array_1x1_8x8_fp" / "summary.json").read_text())
+    s = json.loads((tmp_path / "array_1x1_8x8_grid" / "summary.json").read_text())
     u = s["utilisation"]
     # The DSP unit's twelve products on MULT18X18D (the port contract's count
     # for one DSP unit), the fabric unit's on LUTs and carry chains.
@@ -112,17 +114,28 @@ def test_array_smoke(tmp_path):
     assert "error" not in run and run["fmax"] > 0, run
     assert s["placer"] == "static"
     assert s["nextpnr_args"] == ["--detailed-timing-report", "--write=placed.json"]
-    rundir = tmp_path / "array_1x1_8x8_fp" / "pnr" / "speed8_seed1"
+    rundir = tmp_path / "array_1x1_8x8_grid" / "pnr" / "speed8_seed1"
     log = (rundir / "nextpnr.log").read_text()
     assert "Running Static placer" in log and "HeAP" not in log
     # The floorplan: one unit on the first twelve sites of the snake order,
     # where nextpnr placed them (its written design names each cell's site).
     import floorplan  # scripts/floorplan.py
     sites = floorplan.dsp_sites()
-    assert s["floorplan"] == "dsp" and s["dsp_sites"] == {"u_dut.g_unit[0].u_unit": [sites[0], sites[11]]}
+    assert s["floorplan"] == "grid" and s["dsp_sites"] == {"u_dut.g_unit[0].u_unit": [sites[0], sites[11]]}
     (placed,) = (m["cells"] for m in json.loads((rundir / "placed.json").read_text())["modules"].values())
     bels = sorted(c["attributes"]["NEXTPNR_BEL"] for c in placed.values() if c["type"] == "MULT18X18D")
     assert bels == sorted(sites[:12]), bels
+    # The fabric unit (the only one without MULT18X18D) anchored at the
+    # centre of a one-region grid: four flip-flops on the four slices there.
+    ((x, y),) = floorplan.grid_centres(1)
+    assert s["anchor_tiles"] == {"u_dut.g_unit[1].u_unit": f"X{x}/Y{y}"}
+    netlist = json.loads((tmp_path / "array_1x1_8x8_grid" / "netlist.json").read_text())[
+        "modules"]["ooc_array_wrapper"]["cells"]
+    pinned = {n: c["attributes"]["BEL"] for n, c in netlist.items()
+              if c["type"] == "TRELLIS_FF" and "BEL" in c["attributes"]}
+    assert sorted(pinned.values()) == [f"X{x}/Y{y}/SLICE{sl}.FF0" for sl in "ABCD"], pinned
+    assert all(n.startswith("u_dut.g_unit[1].u_unit.") for n in pinned), pinned
+    assert {n: placed[n]["attributes"]["NEXTPNR_BEL"] for n in pinned} == pinned
     assert "detailed_net_timings" in json.loads((rundir / "report.json").read_text())
     assert s["array"]["units"] == 2
     assert s["array"]["box_tests_per_s"]["8"] == round(s["fmax_mhz"]["8"]["median"] * 1e6 * 2)
@@ -533,6 +546,16 @@ def test_place_first_refused(capsys):
         assert why in capsys.readouterr().err
     assert synth.parse_args(["--seeds", "3", "--place-first", "2"]).place_first == 2
     assert synth.parse_args([]).place_first == 0
+
+
+def test_grid_floorplan_refused(capsys):
+    """--floorplan grid anchors an --array chip's units; other designs are
+    refused with a message (no tools)."""
+    for argv in (["--floorplan", "grid"], ["--cascade", "2:8x8:16x16", "--floorplan", "grid"]):
+        with pytest.raises(SystemExit):
+            synth.parse_args(argv)
+        assert "--floorplan grid anchors the units of an --array chip" in capsys.readouterr().err
+    assert synth.parse_args(["--array", "0x2", "--floorplan", "grid"]).floorplan == "grid"
 
 
 def test_place_first(tmp_path):
