@@ -45,6 +45,8 @@ _SLICE = ((0, 0), (1, 1), (4, 4), (5, 5))  # (X offset, MULT18_<n>)
 # found by pinning flip-flops to every column and row.
 PLC_X_85F = tuple(range(2, 125))
 PLC_Y_85F = tuple(y for y in range(2, 94) if (y - 10) % 12)
+PLC_W_85F = len(PLC_X_85F)  # the span of the logic tiles, in tiles
+PLC_H_85F = PLC_Y_85F[-1] - PLC_Y_85F[0] + 1
 ANCHORS = 4  # flip-flops a unit pinned at its region's centre (grid), one a slice of its tile
 
 
@@ -117,23 +119,38 @@ def assign(names: list[str]) -> dict[str, str]:
     return out
 
 
-def pin_units(netlist: Path, top: str) -> dict[str, list[str]]:
-    """Writes a BEL attribute on every MULT18X18D of the netlist's top
-    module (in place); returns each unit's first and last site."""
+def _read(netlist: Path, top: str) -> tuple[dict, dict]:
+    """A Yosys netlist and its top module's cells."""
     with open(netlist) as f:
         data = json.load(f)
     if top not in data.get("modules", {}):
         raise FloorplanError(f"{netlist}: no module '{top}'")
-    cells = data["modules"][top]["cells"]
+    return data, data["modules"][top]["cells"]
+
+
+def _write(netlist: Path, data: dict) -> None:
+    with open(netlist, "w") as f:
+        json.dump(data, f)
+
+
+def pin_dsp(cells: dict) -> dict[str, list[str]]:
+    """A BEL attribute on every MULT18X18D of the cells; each unit's first
+    and last site."""
     sites = assign([n for n, c in cells.items() if c["type"] == "MULT18X18D"])
     for n, site in sites.items():
         cells[n].setdefault("attributes", {})["BEL"] = site
-    with open(netlist, "w") as f:
-        json.dump(data, f)
     spans: dict[str, list[str]] = {}
     for n, site in sites.items():
-        g = unit_of(n)
-        spans.setdefault(g, [site, site])[1] = site
+        spans.setdefault(unit_of(n), [site, site])[1] = site
+    return spans
+
+
+def pin_units(netlist: Path, top: str) -> dict[str, list[str]]:
+    """Writes a BEL attribute on every MULT18X18D of the netlist's top
+    module (in place); returns each unit's first and last site."""
+    data, cells = _read(netlist, top)
+    spans = pin_dsp(cells)
+    _write(netlist, data)
     return spans
 
 
@@ -156,7 +173,7 @@ def grid_shape(n: int) -> tuple[int, int]:
     units both take 5 x 4 regions; 17 x 1 would be too narrow)."""
     if n < 1:
         raise FloorplanError(f"a grid of {n} regions")
-    w, h = len(PLC_X_85F), PLC_Y_85F[-1] - PLC_Y_85F[0] + 1
+    w, h = PLC_W_85F, PLC_H_85F
     best = None
     for cols in range(1, min(n, w) + 1):
         rows = -(-n // cols)
@@ -179,8 +196,8 @@ def grid_centres(n: int) -> list[tuple[int, int]]:
     right to left (neighbouring units in neighbouring regions); each centre
     on a logic row."""
     cols, rows = grid_shape(n)
-    x0, w = PLC_X_85F[0], len(PLC_X_85F)
-    y0, h = PLC_Y_85F[0], PLC_Y_85F[-1] - PLC_Y_85F[0] + 1
+    x0, w = PLC_X_85F[0], PLC_W_85F
+    y0, h = PLC_Y_85F[0], PLC_H_85F
     out = []
     for r in range(rows):
         xs = [x0 + int((c + 0.5) * w / cols) for c in range(cols)]
@@ -211,19 +228,18 @@ def _plain_copy(cell: dict, ff_q: set) -> bool:
     return all(isinstance(b, str) for port in ("LSR", "CE") for b in conn.get(port, []))  # constants only
 
 
-def anchor_units(netlist: Path, top: str, k: int = ANCHORS) -> dict[str, str]:
-    """Writes a BEL attribute on k flip-flops of each array unit without
-    MULT18X18D (in place), the unit's anchors at the centre tile of its
-    grid region (one a slice, SLICEA-D FF0); returns each unit's tile. The
-    anchors are plain register-to-register flip-flops (pipeline copies),
-    which nextpnr places on their own."""
+def _check_anchors(k: int) -> None:
     if not 1 <= k <= 4:
         raise FloorplanError(f"{k} anchors a unit: 1 to 4 (one a slice of the centre tile)")
-    with open(netlist) as f:
-        data = json.load(f)
-    if top not in data.get("modules", {}):
-        raise FloorplanError(f"{netlist}: no module '{top}'")
-    cells = data["modules"][top]["cells"]
+
+
+def anchor(cells: dict, k: int = ANCHORS) -> dict[str, str]:
+    """A BEL attribute on k flip-flops of each array unit without
+    MULT18X18D, the unit's anchors at the centre tile of its grid region
+    (one a slice, SLICEA-D FF0); each unit's tile. The anchors are plain
+    register-to-register flip-flops (pipeline copies), which nextpnr
+    places on their own."""
+    _check_anchors(k)
     ff_q = {bit for c in cells.values() if c["type"] == "TRELLIS_FF" for bit in c["connections"].get("Q", [])}
     ffs: dict[str, list[str]] = defaultdict(list)
     every, with_dsp = set(), set()
@@ -238,7 +254,7 @@ def anchor_units(netlist: Path, top: str, k: int = ANCHORS) -> dict[str, str]:
             with_dsp.add(u)
     units = sorted(every - with_dsp, key=_natural)
     if not units:
-        raise FloorplanError(f"{netlist}: no array unit without MULT18X18D ('<...>.g_unit[i].u_unit') to anchor; "
+        raise FloorplanError("no array unit without MULT18X18D ('<...>.g_unit[i].u_unit') to anchor; "
                              "--floorplan dsp pins the MULT18X18D of the others")
     tiles: dict[str, str] = {}
     for u, (x, y) in zip(units, grid_centres(len(units))):
@@ -248,6 +264,36 @@ def anchor_units(netlist: Path, top: str, k: int = ANCHORS) -> dict[str, str]:
         for slot, n in zip("ABCD", anchor_cells(ffs[u], k)):
             cells[n].setdefault("attributes", {})["BEL"] = f"X{x}/Y{y}/SLICE{slot}.FF0"
         tiles[u] = f"X{x}/Y{y}"
-    with open(netlist, "w") as f:
-        json.dump(data, f)
     return tiles
+
+
+def anchor_units(netlist: Path, top: str, k: int = ANCHORS) -> dict[str, str]:
+    """Writes the anchors of `anchor` into the netlist's top module (in
+    place); returns each anchored unit's tile."""
+    _check_anchors(k)
+    data, cells = _read(netlist, top)
+    tiles = _anchor_named(netlist, cells, k)
+    _write(netlist, data)
+    return tiles
+
+
+def _anchor_named(netlist: Path, cells: dict, k: int = ANCHORS) -> dict[str, str]:
+    """anchor, its errors naming the netlist."""
+    try:
+        return anchor(cells, k)
+    except FloorplanError as e:
+        raise FloorplanError(f"{netlist}: {e}") from None
+
+
+def apply(netlist: Path, top: str, grid: bool) -> dict:
+    """One read and one write of the netlist for a whole floorplan: the
+    MULT18X18D pinned (if there are any; summary key dsp_sites) and, with
+    grid, the other units anchored (anchor_tiles)."""
+    data, cells = _read(netlist, top)
+    out: dict = {}
+    if any(c["type"] == "MULT18X18D" for c in cells.values()):
+        out["dsp_sites"] = pin_dsp(cells)
+    if grid:
+        out["anchor_tiles"] = _anchor_named(netlist, cells)
+    _write(netlist, data)
+    return out

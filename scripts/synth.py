@@ -835,9 +835,9 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "synth_flags": args.synth_flags,
         "nextpnr_args": args.nextpnr_args,
         **({"ripup_patience": ripup_patience(args)} if ripup_patience(args) is not None else {}),
-        "floorplan": args.floorplan if "floorplan" in ys or "anchors" in ys else "none",
-        **({"dsp_sites": ys["floorplan"]} if "floorplan" in ys else {}),  # per unit: first, last site
-        **({"anchor_tiles": ys["anchors"]} if "anchors" in ys else {}),  # per unit: its anchors' tile
+        "floorplan": args.floorplan if "floorplan" in ys else "none",
+        # per unit: dsp_sites its first and last MULT18X18D site, anchor_tiles its anchors' tile
+        **ys.get("floorplan", {}),
         "tools": tools,
         "yosys_seconds": ys["seconds"],
         "utilisation": u,
@@ -1136,14 +1136,12 @@ def synth_one(spec: tuple, args, yosys: str, sources: list[Path]) -> dict:
     if cells.get("DP16KD", 0) < design.row.get("dp16kd", 0):
         raise FlowError(f"{cells.get('DP16KD', 0)} DP16KD in the netlist, the port contract's table "
                         f"multipliers need {design.row['dp16kd']}")
-    netlist = Path(args.out) / design.name / "netlist.json"
-    try:
-        if args.floorplan in ("dsp", "grid") and cells.get("MULT18X18D", 0):
-            ys["floorplan"] = floorplan.pin_units(netlist, design.top)
-        if args.floorplan == "grid":
-            ys["anchors"] = floorplan.anchor_units(netlist, design.top)
-    except floorplan.FloorplanError as e:
-        raise FlowError(f"--floorplan {args.floorplan}: {e}") from None
+    if args.floorplan == "grid" or (args.floorplan == "dsp" and cells.get("MULT18X18D", 0)):
+        try:
+            ys["floorplan"] = floorplan.apply(Path(args.out) / design.name / "netlist.json", design.top,
+                                              grid=args.floorplan == "grid")
+        except floorplan.FloorplanError as e:
+            raise FlowError(f"--floorplan {args.floorplan}: {e}") from None
     return {"ys": ys, "row": design.row}
 
 

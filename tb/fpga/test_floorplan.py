@@ -112,8 +112,8 @@ def test_grid_shape():
         cols, rows = floorplan.grid_shape(n)
         assert n <= cols * rows < n + max(cols, rows), (n, cols, rows)  # no empty row or column
         # regions no more than twice as long as wide on the die's logic tiles
-        w = len(floorplan.PLC_X_85F) / cols
-        h = (floorplan.PLC_Y_85F[-1] - floorplan.PLC_Y_85F[0] + 1) / rows
+        w = floorplan.PLC_W_85F / cols
+        h = floorplan.PLC_H_85F / rows
         assert n < 4 or 0.5 <= w / h <= 2.0, (n, cols, rows, w, h)
     assert floorplan.grid_shape(20) == (5, 4)
     assert floorplan.grid_shape(17) == (5, 4)  # not 17 x 1
@@ -193,3 +193,24 @@ def test_anchor_units_writes_bel(tmp_path):
         f"u_dut.g_unit[0].u_unit.sum_TRELLIS_FF_Q_{i}": _ff(5000, 6000 + i) for i in range(10)}}}}))
     with pytest.raises(floorplan.FloorplanError, match=r"unit 'u_dut.g_unit\[0\].u_unit' has 0 register-to-register"):
         floorplan.anchor_units(p3, "top")
+
+
+def test_apply_pins_and_anchors_in_one_pass(tmp_path):
+    # one DSP unit and two fabric units: grid pins the first's MULT18X18D
+    # and anchors the others; dsp alone leaves the fabric units free
+    cells = {n: {"type": "MULT18X18D", "attributes": {}} for n in _unit_cells("u_dut.g_unit[0].u_unit")}
+    cells.update({n: _ff(100 + i, 101 + i) for k in (1, 2)
+                  for i, n in enumerate(_unit_ffs(f"u_dut.g_unit[{k}].u_unit"))})
+    path = tmp_path / "netlist.json"
+    text = json.dumps({"modules": {"top": {"cells": cells}}})
+    path.write_text(text)
+    out = floorplan.apply(path, "top", grid=True)
+    sites = floorplan.dsp_sites()
+    assert out["dsp_sites"] == {"u_dut.g_unit[0].u_unit": [sites[0], sites[11]]}
+    assert list(out["anchor_tiles"]) == ["u_dut.g_unit[1].u_unit", "u_dut.g_unit[2].u_unit"]
+    written = json.loads(path.read_text())["modules"]["top"]["cells"]
+    assert sum("BEL" in c["attributes"] for c in written.values()) == 12 + 2 * floorplan.ANCHORS
+    path.write_text(text)
+    assert list(floorplan.apply(path, "top", grid=False)) == ["dsp_sites"]
+    written = json.loads(path.read_text())["modules"]["top"]["cells"]
+    assert sum("BEL" in c["attributes"] for c in written.values()) == 12
