@@ -214,3 +214,76 @@ def test_apply_pins_and_anchors_in_one_pass(tmp_path):
     assert list(floorplan.apply(path, "top", grid=False)) == ["dsp_sites"]
     written = json.loads(path.read_text())["modules"]["top"]["cells"]
     assert sum("BEL" in c["attributes"] for c in written.values()) == 12
+
+
+# --- grid on a chip of cascades: lanes beside their wide unit --------------
+
+def test_lane_tiles_beside_the_wide_unit():
+    sites = floorplan.dsp_sites()
+    for slot in range(13):
+        wide = sites[12 * slot:12 * slot + 12]
+        xy = [_xy(s) for s in wide]
+        cx = sum(x for x, _ in xy) / 12
+        cy = sum(y for _, y in xy) / 12
+        for n in (1, 2, 3, 4):
+            tiles = floorplan.lane_tiles(wide, n)
+            assert len(tiles) == len(set(tiles)) == n, (slot, n, tiles)
+            for lane, (x, y) in enumerate(tiles):
+                assert x in floorplan.PLC_X_85F and y in floorplan.PLC_Y_85F, (slot, lane, x, y)
+                # even lanes below the sites' mean, odd lanes above (unless the die's edge is nearer)
+                below = y > cy or (y == floorplan.PLC_Y_85F[-1])
+                above = y < cy or (y == floorplan.PLC_Y_85F[0])
+                assert (below if lane % 2 == 0 else above), (slot, lane, x, y, cy)
+                assert abs(y - cy) <= floorplan.LANE_DY + 2 and abs(x - cx) <= floorplan.LANE_DX + 1
+    # the cascade in the second slot of the top DSP row: one lane below, one above
+    assert floorplan.lane_tiles(sites[12:24], 2) == [(42, 18), (42, 2)]
+    with pytest.raises(floorplan.FloorplanError, match="without MULT18X18D sites"):
+        floorplan.lane_tiles([], 2)
+    with pytest.raises(floorplan.FloorplanError, match="X<x>/Y<y>"):
+        floorplan.lane_tiles(["MULT18_0"], 2)
+
+
+def _cascade_cells(m: int, lanes: int, plain: int) -> dict:
+    """A chip of m cascades (lanes narrow lanes each; the wide unit's
+    twelve MULT18X18D) and plain wide units, as the cascade harness names
+    them; every lane and the harness with register-to-register flip-flops."""
+    cells = {}
+    for c in range(m):
+        cells.update({n: {"type": "MULT18X18D", "attributes": {}}
+                      for n in _unit_cells(f"g_cascade[{c}].u_dut.u_wide")})
+        for lane in range(lanes):
+            cells.update({n: _ff(100 + i, 101 + i)
+                          for i, n in enumerate(_unit_ffs(f"g_cascade[{c}].u_dut.g_lane[{lane}].u_narrow"))})
+            # the cascade's own flops of the lane (its answer skid) are not the lane's unit
+            cells[f"g_cascade[{c}].u_dut.g_lane[{lane}].u_answer.data_q_TRELLIS_FF_Q"] = _ff(100, 101)
+    for k in range(plain):
+        cells.update({n: {"type": "MULT18X18D", "attributes": {}}
+                      for n in _unit_cells(f"g_wide.u_wide.g_unit[{k}].u_unit")})
+        cells.update({n: _ff(100 + i, 101 + i) for i, n in enumerate(_unit_ffs(f"g_wide.u_wide.g_unit[{k}].u_unit"))})
+    cells.update({f"g_lane[{lane}].ooc_box_q_TRELLIS_FF_Q_{i}": _ff(99, 100) for lane in range(m * lanes) for i in range(8)})
+    return cells
+
+
+def test_apply_anchors_cascade_lanes(tmp_path):
+    cells = _cascade_cells(5, 2, 8)
+    path = tmp_path / "netlist.json"
+    path.write_text(json.dumps({"modules": {"top": {"cells": cells}}}))
+    out = floorplan.apply(path, "top", grid=True)
+    written = json.loads(path.read_text())["modules"]["top"]["cells"]
+    lanes = [f"g_cascade[{c}].u_dut.g_lane[{lane}].u_narrow" for c in range(5) for lane in range(2)]
+    assert sorted(out["anchor_tiles"]) == sorted(lanes)  # the plain units keep only their MULT18X18D pins
+    for c in range(5):
+        wide = [written[n]["attributes"]["BEL"] for n in _unit_cells(f"g_cascade[{c}].u_dut.u_wide")]
+        tiles = floorplan.lane_tiles(wide, 2)
+        for lane, (x, y) in enumerate(tiles):
+            u = f"g_cascade[{c}].u_dut.g_lane[{lane}].u_narrow"
+            assert out["anchor_tiles"][u] == f"X{x}/Y{y}"
+            bels = sorted(cc["attributes"]["BEL"] for n, cc in written.items()
+                          if n.startswith(u + ".") and "BEL" in cc["attributes"])
+            assert bels == [f"X{x}/Y{y}/SLICE{s}.FF0" for s in "ABCD"], (u, bels)
+    assert not any("BEL" in cc["attributes"] for n, cc in written.items()
+                   if cc["type"] == "TRELLIS_FF" and ".u_narrow." not in n)
+    assert sum("BEL" in cc["attributes"] for cc in written.values()) == 13 * 12 + 10 * floorplan.ANCHORS
+    # lanes need their wide unit's sites: anchoring before pinning is refused, by cascade
+    with pytest.raises(floorplan.FloorplanError, match=r"cascade 'g_cascade\[0\].u_dut'.*not all pinned"):
+        floorplan.anchor(_cascade_cells(1, 2, 0))
