@@ -293,12 +293,11 @@ def _pin_anchors(cells: dict, unit: str, ffs: list[str], k: int, x: int, y: int)
 def anchor(cells: dict, k: int = ANCHORS) -> dict[str, str]:
     """A BEL attribute on k flip-flops of each array unit without
     MULT18X18D, the unit's anchors at the centre tile of its grid region
-    (one a slice, SLICEA-D FF0), and of each fabric cascade lane, its anchors
+    (one a slice, SLICEA-D FF0), and of each cascade lane, its anchors
     beside its cascade's wide unit (lane_tiles; that unit's MULT18X18D
     pinned first, pin_dsp); each anchored unit's tile. The anchors are
     plain register-to-register flip-flops (pipeline copies), which nextpnr
-    places on their own. Units and lanes with MULT18X18D are left to
-    pin_dsp."""
+    places on their own."""
     _check_anchors(k)
     ff_q = {bit for c in cells.values() if c["type"] == "TRELLIS_FF" for bit in c["connections"].get("Q", [])}
     ffs: dict[str, list[str]] = defaultdict(list)
@@ -316,7 +315,6 @@ def anchor(cells: dict, k: int = ANCHORS) -> dict[str, str]:
         elif c["type"] == "MULT18X18D":
             with_dsp.add(u)
     units = sorted(every - with_dsp - lanes, key=_natural)
-    lanes -= with_dsp  # a lane on MULT18X18D has its own DSP pins
     if not units and not lanes:
         raise FloorplanError("no array unit without MULT18X18D ('<...>.g_unit[i].u_unit') or cascade lane "
                              "('<...>.g_lane[l].u_narrow') to anchor; --floorplan dsp pins the MULT18X18D "
