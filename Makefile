@@ -387,11 +387,10 @@ endif
 #             RST_STAGES: the reset tree, flops per unit (per cascade) in
 #             front of its reset (3 by default; 0: one reset net for the
 #             whole chip). FLOORPLAN: dsp (default: each unit's MULT18X18D
-#             on consecutive sites, scripts/floorplan.py), grid (CHIP or
-#             CASCADE: as dsp, and each array unit without MULT18X18D gets
-#             a region of a grid over the die, four of its flip-flops
-#             pinned at the region's centre; each cascade lane as many
-#             beside its cascade's wide unit) or none. Both add to the folder's name
+#             on consecutive sites, scripts/floorplan.py), grid (CHIP only:
+#             as dsp, and each unit without MULT18X18D gets a region of a
+#             grid over the die, four of its flip-flops pinned at the
+#             region's centre) or none. Both add to the folder's name
 #             (_r<K>, _fp or _grid). CLOCKS=2 (a mixed CHIP):
 #             the fabric units on a clock of their own (target FREQ_LUT,
 #             default FREQ), each kind at its own Fmax; box tests per

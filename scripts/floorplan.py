@@ -3,16 +3,12 @@
 dsp: each unit's MULT18X18D blocks side by side, so that the placer can
 put the unit's fabric next to all of them.
 
-grid: each array unit without MULT18X18D (fabric or table multipliers)
-gets a region of a grid over the logic tiles, and a few of its flip-flops
-are pinned at the region's centre (`anchor_units`). Nothing else of the
-unit is pinned: the anchors only give each unit a place of its own.
-Without them every unit of a chip of independent lanes has the same
-quadratic solution, and HeAP spreads them from one point into each other.
-A cascade's narrow lanes are anchored the same way, beside their
-cascade's wide unit (`lane_tiles`: across the rows from its MULT18X18D,
-one lane below and one above), since each lane escalates to that unit:
-the wide unit's pins pull all its lanes to one point as well.
+grid: each unit without MULT18X18D (fabric or table multipliers) gets a
+region of a grid over the logic tiles, and a few of its flip-flops are
+pinned at the region's centre (`anchor_units`). Nothing else of the unit
+is pinned: the anchors only give each unit a place of its own. Without
+them every unit of a chip of independent lanes has the same quadratic
+solution, and HeAP spreads them from one point into each other.
 
 Left alone, nextpnr's placer spreads a unit's twelve MULT18X18D along the
 DSP rows, and the fabric that feeds and reads them cannot be near all of
@@ -237,104 +233,37 @@ def _check_anchors(k: int) -> None:
         raise FloorplanError(f"{k} anchors a unit: 1 to 4 (one a slice of the centre tile)")
 
 
-# A cascade's narrow lane ('<cascade>.g_lane[l].u_narrow', rtl/pluecker_cascade.sv)
-# and its cascade's wide unit ('<cascade>.u_wide').
-_LANE_UNIT = re.compile(r"^(.*?)\.g_lane\[\d+\]\.u_narrow\.")
-LANE_DY = 8   # tiles from the wide unit's MULT18X18D (their mean) to a lane's anchor tile, across the rows
-LANE_DX = 16  # tiles between two lanes on the same side of the wide unit
-
-
-def lane_unit_of(name: str) -> str | None:
-    """The cascade lane ('<...>.g_lane[l].u_narrow') a cell belongs to, or
-    None."""
-    m = _LANE_UNIT.match(name)
-    return name[:m.end() - 1] if m else None
-
-
-def _site_xy(bel: str) -> tuple[int, int]:
-    m = re.match(r"X(\d+)/Y(\d+)/", bel)
-    if not m:
-        raise FloorplanError(f"site '{bel}': expected X<x>/Y<y>/<bel>")
-    return int(m.group(1)), int(m.group(2))
-
-
-def lane_tiles(wide_sites: list[str], n: int) -> list[tuple[int, int]]:
-    """The anchor tiles (X, Y) of a cascade's n lanes beside its wide
-    unit, whose MULT18X18D sit on wide_sites: even lanes LANE_DY rows below
-    the sites' mean, odd lanes as far above it, the lanes of one side
-    LANE_DX columns apart, centred on it; each tile a logic tile."""
-    if not wide_sites:
-        raise FloorplanError("a cascade's wide unit without MULT18X18D sites: no place for its lanes")
-    xy = [_site_xy(s) for s in wide_sites]
-    cx = sum(x for x, _ in xy) / len(xy)
-    cy = sum(y for _, y in xy) / len(xy)
-    out = []
-    for lane in range(n):
-        side = 1 if lane % 2 == 0 else -1
-        on_side = (n + 1) // 2 if side == 1 else n // 2
-        x = cx + (lane // 2 - (on_side - 1) / 2) * LANE_DX
-        x = min(max(round(x), PLC_X_85F[0]), PLC_X_85F[-1])
-        y = _snap_row(min(max(cy + side * LANE_DY, PLC_Y_85F[0]), PLC_Y_85F[-1]))
-        out.append((x, y))
-    if len(set(out)) < n:
-        raise FloorplanError(f"{n} lanes of one cascade: two anchor tiles coincide ({out})")
-    return out
-
-
-def _pin_anchors(cells: dict, unit: str, ffs: list[str], k: int, x: int, y: int) -> str:
-    if len(ffs) < k:
-        raise FloorplanError(f"unit '{unit}' has {len(ffs)} register-to-register flip-flops without "
-                             f"set/reset or enable, {k} anchors wanted")
-    for slot, n in zip("ABCD", anchor_cells(ffs, k)):
-        cells[n].setdefault("attributes", {})["BEL"] = f"X{x}/Y{y}/SLICE{slot}.FF0"
-    return f"X{x}/Y{y}"
-
-
 def anchor(cells: dict, k: int = ANCHORS) -> dict[str, str]:
     """A BEL attribute on k flip-flops of each array unit without
     MULT18X18D, the unit's anchors at the centre tile of its grid region
-    (one a slice, SLICEA-D FF0), and of each cascade lane, its anchors
-    beside its cascade's wide unit (lane_tiles; that unit's MULT18X18D
-    pinned first, pin_dsp); each anchored unit's tile. The anchors are
-    plain register-to-register flip-flops (pipeline copies), which nextpnr
+    (one a slice, SLICEA-D FF0); each unit's tile. The anchors are plain
+    register-to-register flip-flops (pipeline copies), which nextpnr
     places on their own."""
     _check_anchors(k)
     ff_q = {bit for c in cells.values() if c["type"] == "TRELLIS_FF" for bit in c["connections"].get("Q", [])}
     ffs: dict[str, list[str]] = defaultdict(list)
-    every, with_dsp, lanes = set(), set(), set()
+    every, with_dsp = set(), set()
     for n, c in cells.items():
         u = array_unit_of(n)
         if u is None:
-            u = lane_unit_of(n)
-            if u is None:
-                continue
-            lanes.add(u)
+            continue
         every.add(u)
         if c["type"] == "TRELLIS_FF" and _plain_copy(c, ff_q):
             ffs[u].append(n)
         elif c["type"] == "MULT18X18D":
             with_dsp.add(u)
-    units = sorted(every - with_dsp - lanes, key=_natural)
-    if not units and not lanes:
-        raise FloorplanError("no array unit without MULT18X18D ('<...>.g_unit[i].u_unit') or cascade lane "
-                             "('<...>.g_lane[l].u_narrow') to anchor; --floorplan dsp pins the MULT18X18D "
-                             "of the others")
+    units = sorted(every - with_dsp, key=_natural)
+    if not units:
+        raise FloorplanError("no array unit without MULT18X18D ('<...>.g_unit[i].u_unit') to anchor; "
+                             "--floorplan dsp pins the MULT18X18D of the others")
     tiles: dict[str, str] = {}
-    for u, (x, y) in zip(units, grid_centres(len(units)) if units else []):
-        tiles[u] = _pin_anchors(cells, u, ffs[u], k, x, y)
-    by_cascade: dict[str, list[str]] = defaultdict(list)
-    for u in lanes:
-        by_cascade[_LANE_UNIT.match(u + ".").group(1)].append(u)
-    for cascade, its_lanes in sorted(by_cascade.items(), key=lambda kv: _natural(kv[0])):
-        wide = cascade + ".u_wide."
-        sites = [c.get("attributes", {}).get("BEL") for n, c in cells.items()
-                 if c["type"] == "MULT18X18D" and n.startswith(wide)]
-        if not sites or None in sites:
-            raise FloorplanError(f"cascade '{cascade}': its wide unit's MULT18X18D are not all pinned "
-                                 f"({len(sites)} found); the lanes are anchored beside them")
-        its_lanes.sort(key=_natural)
-        for u, (x, y) in zip(its_lanes, lane_tiles(sites, len(its_lanes))):
-            tiles[u] = _pin_anchors(cells, u, ffs[u], k, x, y)
+    for u, (x, y) in zip(units, grid_centres(len(units))):
+        if len(ffs[u]) < k:
+            raise FloorplanError(f"unit '{u}' has {len(ffs[u])} register-to-register flip-flops without "
+                                 f"set/reset or enable, {k} anchors wanted")
+        for slot, n in zip("ABCD", anchor_cells(ffs[u], k)):
+            cells[n].setdefault("attributes", {})["BEL"] = f"X{x}/Y{y}/SLICE{slot}.FF0"
+        tiles[u] = f"X{x}/Y{y}"
     return tiles
 
 

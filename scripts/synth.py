@@ -67,9 +67,8 @@ two more options (`make chip` sets both): --rst-stages K, a reset tree of K
 flops per unit (per cascade) so that no reset net spans the die (folder
 suffix _r<K>), and --floorplan dsp, each unit's MULT18X18D on consecutive
 sites of the DSP rows (scripts/floorplan.py; suffix _fp), or --floorplan
-grid (--array, --cascade), as dsp and each array unit without MULT18X18D
-anchored in a region of its own by four pinned flip-flops, each cascade
-lane by as many beside its cascade's wide unit (suffix _grid). --clocks 2 (a
+grid (--array), as dsp and each unit without MULT18X18D anchored in a
+region of its own by four pinned flip-flops (suffix _grid). --clocks 2 (a
 mixed --array only) puts the fabric units on a clock of their own
 (clk_lut_i; the DSP units stay on clk_i), so that each kind runs at its own
 Fmax: nextpnr gets one target per clock (--freq, --freq-lut; an LPF file
@@ -1116,7 +1115,7 @@ def design_of(spec: tuple, args) -> Design:
         d.name += f"_r{args.rst_stages}"
     if args.floorplan == "dsp" and d.row.get("mult18x18d"):  # nothing to pin without MULT18X18D
         d.name += "_fp"
-    if args.floorplan == "grid":  # --array and --cascade only (parse_args)
+    if args.floorplan == "grid":  # --array only (parse_args)
         d.name += "_grid"
     if "name" in d.fields:  # the summary's name is the folder's (make chip-effective tells chips by it)
         d.fields["name"] = d.name
@@ -1299,10 +1298,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--floorplan", choices=("none", "dsp", "grid"), default="none",
                    help="dsp: each unit's MULT18X18D on consecutive sites of the DSP rows (BEL attributes, "
                         "scripts/floorplan.py), so its fabric can sit next to all of them; adds _fp to the "
-                        "output folder's name. grid (--array, --cascade): as dsp, and each array unit without "
-                        f"MULT18X18D gets a region of a grid over the die, {floorplan.ANCHORS} of its "
-                        "flip-flops pinned at the region's centre, and each cascade lane as many beside its "
-                        "cascade's wide unit; adds _grid")
+                        "output folder's name. grid (--array): as dsp, and each unit without MULT18X18D "
+                        f"gets a region of a grid over the die, {floorplan.ANCHORS} of its flip-flops pinned "
+                        "at the region's centre; adds _grid")
     p.add_argument("--synth-flag", dest="synth_flags", action="append", default=[], metavar="FLAG",
                    help="one more synth_ecp5 option, repeatable, e.g. --synth-flag=-nolutram (the "
                         "output FIFOs in DP16KD block RAM instead of LUT RAM) or --synth-flag=-nodffe; each adds _<option> to the output folder's name")
@@ -1351,9 +1349,9 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error("--clocks 2 is for a mixed --array (DSP units on clk_i, fabric units on clk_lut_i)")
     if args.freq_lut is not None and args.clocks != 2:
         p.error("--freq-lut is the target of the fabric units' clock: give --clocks 2 too")
-    if args.floorplan == "grid" and not (args.array or args.cascade):
-        p.error("--floorplan grid anchors the units of an --array chip or the lanes of a --cascade chip "
-                "(--floorplan dsp pins the MULT18X18D of other designs)")
+    if args.floorplan == "grid" and not args.array:
+        p.error("--floorplan grid anchors the units of an --array chip (--floorplan dsp pins the MULT18X18D "
+                "of other designs)")
     if args.freq_lut is None:
         args.freq_lut = args.freq
     if args.freq <= 0 or args.freq_lut <= 0:

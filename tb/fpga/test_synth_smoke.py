@@ -169,21 +169,20 @@ def test_cascade_yosys(tmp_path):
     cascades): each cascade two narrow TERNARY lanes with fabric multipliers
     and a shared wide 16/16 unit on MULT18X18D blocks, the port contract's
     counts (12 blocks a cascade: the wide unit's alone; 12 the plain
-    unit). With a two-stage reset tree (--rst-stages 2) and the grid
-    floorplan (--floorplan grid): every copy of the reset is a flip-flop of
-    its own in the netlist (Yosys merges identical flops unless kept), each
-    wide unit's twelve blocks carry consecutive sites (as with dsp), and
-    each lane has its anchors beside its cascade's wide unit."""
+    unit). With a two-stage reset tree (--rst-stages 2) and the DSP
+    floorplan (--floorplan dsp): every copy of the reset is a flip-flop of
+    its own in the netlist (Yosys merges identical flops unless kept), and
+    each wide unit's twelve blocks carry consecutive sites."""
     reason = _tools_missing()
     if reason:
         pytest.fail(f"{reason}; `make setup` installs the pinned venv")
     res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2*2:8x8:16x16+1",
-                          "--rst-stages", "2", "--floorplan", "grid", "--no-pnr", "--out", str(tmp_path)],
+                          "--rst-stages", "2", "--floorplan", "dsp", "--no-pnr", "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=1800)
     assert res.returncode == 0, f"synth.py --cascade failed:\n{res.stdout}\n{res.stderr}"
-    folder = tmp_path / "cascade_2x2_8x8_16x16_w1_r2_grid"
+    folder = tmp_path / "cascade_2x2_8x8_16x16_w1_r2_fp"
     s = json.loads((folder / "summary.json").read_text())
-    assert s["rst_stages"] == 2 and s["floorplan"] == "grid" and s["name"] == folder.name
+    assert s["rst_stages"] == 2 and s["floorplan"] == "dsp" and s["name"] == folder.name
     cells = json.loads((folder / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]["cells"]
     # The reset tree: the harness's reset flop, then chains of two per
     # cascade (2), plain unit (1), harness lane (5) and escalation stream
@@ -195,17 +194,6 @@ def test_cascade_yosys(tmp_path):
                   if c["type"] == "MULT18X18D")
     assert [i for i, _ in bels] == list(range(36)), bels
     assert len({n[:n.rfind(".g_mul[")] for _, n in bels[12:24]}) == 1  # one unit per run of twelve sites
-    # four anchors a lane, on the tiles lane_tiles gives beside its cascade's wide unit
-    for m in range(2):
-        wide = [c["attributes"]["BEL"] for n, c in cells.items()
-                if c["type"] == "MULT18X18D" and n.startswith(f"g_cascade[{m}].u_dut.u_wide.")]
-        for lane, (x, y) in enumerate(floorplan.lane_tiles(wide, 2)):
-            u = f"g_cascade[{m}].u_dut.g_lane[{lane}].u_narrow"
-            assert s["anchor_tiles"][u] == f"X{x}/Y{y}", s["anchor_tiles"]
-            assert sorted(c["attributes"]["BEL"] for n, c in cells.items()
-                          if n.startswith(u + ".") and c["type"] == "TRELLIS_FF" and "BEL" in c["attributes"]) \
-                == [f"X{x}/Y{y}/SLICE{slot}.FF0" for slot in "ABCD"], u
-    assert len(s["anchor_tiles"]) == 4 and len(s["dsp_sites"]) == 3
     import contract  # scripts/contract.py
     wide = contract.row(16, 16, "auto", 0)["mult18x18d"]
     assert contract.row(8, 8, "auto", 0)["mult18x18d"] == 0 and wide == 12
@@ -561,14 +549,13 @@ def test_place_first_refused(capsys):
 
 
 def test_grid_floorplan_refused(capsys):
-    """--floorplan grid anchors an --array chip's units and a --cascade
-    chip's lanes; other designs are refused with a message (no tools)."""
-    for argv in (["--floorplan", "grid"], ["--local", "--floorplan", "grid"]):
+    """--floorplan grid anchors an --array chip's units; other designs are
+    refused with a message (no tools)."""
+    for argv in (["--floorplan", "grid"], ["--cascade", "2:8x8:16x16", "--floorplan", "grid"]):
         with pytest.raises(SystemExit):
             synth.parse_args(argv)
-        assert "--floorplan grid anchors the units of an --array chip or the lanes" in capsys.readouterr().err
+        assert "--floorplan grid anchors the units of an --array chip" in capsys.readouterr().err
     assert synth.parse_args(["--array", "0x2", "--floorplan", "grid"]).floorplan == "grid"
-    assert synth.parse_args(["--cascade", "2:8x8:16x16", "--floorplan", "grid"]).floorplan == "grid"
 
 
 def test_place_first(tmp_path):
