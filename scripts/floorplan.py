@@ -18,6 +18,8 @@ first, where they are told): the blocks of one unit take consecutive
 sites in a snake order over the device's three DSP rows (left to right,
 right to left, left to right), and units of different kinds (e.g. the
 wide units of cascades and plain units) are spread evenly over the rows.
+`apply` does both floorplans' steps in one read and one write of the
+netlist (scripts/synth.py calls it).
 
 A unit is the hierarchy above the intersector's product generate blocks
 (`<unit>.g_mul[i]...`, or `<unit>.g_pair...` where one block does two
@@ -228,18 +230,14 @@ def _plain_copy(cell: dict, ff_q: set) -> bool:
     return all(isinstance(b, str) for port in ("LSR", "CE") for b in conn.get(port, []))  # constants only
 
 
-def _check_anchors(k: int) -> None:
-    if not 1 <= k <= 4:
-        raise FloorplanError(f"{k} anchors a unit: 1 to 4 (one a slice of the centre tile)")
-
-
 def anchor(cells: dict, k: int = ANCHORS) -> dict[str, str]:
     """A BEL attribute on k flip-flops of each array unit without
     MULT18X18D, the unit's anchors at the centre tile of its grid region
     (one a slice, SLICEA-D FF0); each unit's tile. The anchors are plain
     register-to-register flip-flops (pipeline copies), which nextpnr
     places on their own."""
-    _check_anchors(k)
+    if not 1 <= k <= 4:
+        raise FloorplanError(f"{k} anchors a unit: 1 to 4 (one a slice of the centre tile)")
     ff_q = {bit for c in cells.values() if c["type"] == "TRELLIS_FF" for bit in c["connections"].get("Q", [])}
     ffs: dict[str, list[str]] = defaultdict(list)
     every, with_dsp = set(), set()
@@ -270,7 +268,6 @@ def anchor(cells: dict, k: int = ANCHORS) -> dict[str, str]:
 def anchor_units(netlist: Path, top: str, k: int = ANCHORS) -> dict[str, str]:
     """Writes the anchors of `anchor` into the netlist's top module (in
     place); returns each anchored unit's tile."""
-    _check_anchors(k)
     data, cells = _read(netlist, top)
     tiles = _anchor_named(netlist, cells, k)
     _write(netlist, data)
