@@ -391,10 +391,12 @@ endif
 #             as dsp, and each unit without MULT18X18D gets a region of a
 #             grid over the die, four of its flip-flops pinned at the
 #             region's centre) or none. Both add to the folder's name
-#             (_r<K>, _fp or _grid). CLOCKS=2 (a mixed CHIP):
-#             the fabric units on a clock of their own (target FREQ_LUT,
-#             default FREQ), each kind at its own Fmax; box tests per
-#             second NDSP x Fmax + NLUT x Fmax of the fabric clock (_clk2).
+#             (_r<K>, _fp or _grid). CLOCKS=2 (a mixed CHIP, or a
+#             CASCADE chip with plain wide units, +W): the fabric units
+#             (the plain wide units) on a clock of their own (target
+#             FREQ_LUT, default FREQ), each kind at its own Fmax; box tests
+#             per second NDSP x Fmax + NLUT x Fmax of the fabric clock, or
+#             lanes x Fmax + W x Fmax of the plain units' clock (_clk2).
 CHIP       ?= 13x0
 CLOCKS     ?= 1
 ROUTER     ?= router2

@@ -21,6 +21,15 @@
 // its rst_i from a kept chain of RST_STAGES flops of its own, the plain
 // units from theirs (pluecker_array's RST_STAGES), the harness's flops of
 // a lane or an escalation stream from a kept chain as deep each.
+//
+// CLOCKS = 1: everything on clk_i (clk_wide_i is not used). CLOCKS = 2
+// (needs N_WIDE > 0): the plain wide units (u_wide), their lanes' harness
+// flops and reset chains run on clk_wide_i, with rst_i registered on that
+// clock too, so that they run at their own Fmax instead of the cascades'.
+// The cascades, their lanes and escalation streams stay on clk_i. Nothing
+// crosses between the domains (the plain units are lanes of their own);
+// the chip's box tests per second are M*N_NARROW x Fmax(clk_i) + N_WIDE x
+// Fmax(clk_wide_i).
 `default_nettype none
 
 module ooc_cascade_wrapper #(
@@ -34,6 +43,7 @@ module ooc_cascade_wrapper #(
     parameter int PIPELINE = 0,
     parameter int N_WIDE = 0,  // plain wide units beside the cascades
     parameter int RST_STAGES = 0,  // reset tree: flops per cascade in front of its rst_i (0..8)
+    parameter int CLOCKS = 1,  // 1: one clock; 2: the plain wide units on clk_wide_i
     localparam int M = N_CASCADES,
     localparam int NL = M * N_NARROW,  // cascade lanes
     localparam int N = NL + N_WIDE,  // lanes in all
@@ -46,6 +56,9 @@ module ooc_cascade_wrapper #(
     localparam int EW = LANE_BITS + TAG_BITS
 ) (
     input wire clk_i,
+    // verilator lint_off UNUSEDSIGNAL
+    input wire clk_wide_i,  // CLOCKS = 2 only
+    // verilator lint_on UNUSEDSIGNAL
     input wire rst_i,
 
     input  wire [   N-1:0] in_valid_i,
@@ -80,13 +93,25 @@ module ooc_cascade_wrapper #(
   if (RST_STAGES < 0 || RST_STAGES > 8) begin : g_bad_rst_stages
     $error("ooc_cascade_wrapper: parameter RST_STAGES must be 0..8");
   end
+  if (CLOCKS != 1 && CLOCKS != 2) begin : g_bad_clocks
+    $error("ooc_cascade_wrapper: parameter CLOCKS must be 1 or 2");
+  end
+  if (CLOCKS == 2 && N_WIDE < 1) begin : g_bad_clocks_wide
+    $error("ooc_cascade_wrapper: CLOCKS = 2 puts the plain wide units on clk_wide_i: N_WIDE must be at least 1");
+  end
 
   logic ooc_rst_q;
+  // The lanes' flops are driven lane by lane, each lane on its own clock
+  // (clk_i or clk_wide): Verilator's MULTIDRIVEN (driving blocks with
+  // different clocks) is waived for these vectors; each bit has one driver,
+  // and this synthesis harness is never simulated.
+  // verilator lint_off MULTIDRIVEN
   logic [N-1:0] ooc_in_valid_q, ooc_out_ready_q, ooc_in_ready_q, ooc_out_valid_q;
-  logic [M-1:0] ooc_esc_ready_q, ooc_esc_valid_q;
   logic [PW-1:0] ooc_payload_q;
   logic [N*TAG_BITS-1:0] ooc_out_tag_q;
   logic [N-1:0] ooc_out_hit_q;
+  // verilator lint_on MULTIDRIVEN
+  logic [M-1:0] ooc_esc_ready_q, ooc_esc_valid_q;
   logic [M*EW-1:0] ooc_esc_tag_q;
   logic [M-1:0] ooc_esc_hit_q;
 
@@ -97,6 +122,17 @@ module ooc_cascade_wrapper #(
 
   always_ff @(posedge clk_i) ooc_rst_q <= rst_i;
 
+  // The plain wide units' clock and registered reset: clk_i and ooc_rst_q
+  // with one clock.
+  wire clk_wide, rst_wide;
+  if (CLOCKS == 2) begin : g_wide_clk
+    logic ooc_rst_wide_q;
+    always_ff @(posedge clk_wide_i) ooc_rst_wide_q <= rst_i;
+    assign {clk_wide, rst_wide} = {clk_wide_i, ooc_rst_wide_q};
+  end else begin : g_one_clk
+    assign {clk_wide, rst_wide} = {clk_i, ooc_rst_q};
+  end
+
   // The reset of a harness flop of lane l (or of escalation stream m) and
   // of cascade m: ooc_rst_q itself, or the end of a kept chain of
   // RST_STAGES flops (one per lane, stream and cascade; identical flops
@@ -106,18 +142,22 @@ module ooc_cascade_wrapper #(
   // Chain c: lane c (c < N), escalation stream c - N, cascade c - N - M.
   wire [N+2*M-1:0] chain_end;
   for (genvar c = 0; c < N + 2 * M; c++) begin : g_chain
+    localparam bit WIDE_LANE = c >= NL && c < N;  // a plain unit's lane: its domain
     pluecker_rst_chain #(
         .STAGES(RST_STAGES)
     ) u_rst (
-        .clk_i(clk_i),
-        .rst_i(ooc_rst_q),
+        .clk_i(WIDE_LANE ? clk_wide : clk_i),
+        .rst_i(WIDE_LANE ? rst_wide : ooc_rst_q),
         .rst_o(chain_end[c])
     );
   end
   assign {cascade_rst, esc_rst, lane_rst} = chain_end;
 
+  // Each lane's harness flops on its lane's clock: the cascades' lanes on
+  // clk_i, the plain units' on clk_wide.
   for (genvar l = 0; l < N; l++) begin : g_lane_ctrl
-    always_ff @(posedge clk_i) begin
+    wire lane_clk = (l >= NL) ? clk_wide : clk_i;
+    always_ff @(posedge lane_clk) begin
       if (lane_rst[l]) begin
         {ooc_in_valid_q[l], ooc_out_ready_q[l], ooc_in_ready_q[l], ooc_out_valid_q[l]} <= '0;
       end else begin
@@ -133,10 +173,23 @@ module ooc_cascade_wrapper #(
     end
   end
 
-  always_ff @(posedge clk_i) begin
-    ooc_payload_q <= payload_i;
-    {ooc_out_tag_q, ooc_out_hit_q} <= {dut_out_tag, dut_out_hit};
-    {ooc_esc_tag_q, ooc_esc_hit_q} <= {dut_esc_tag, dut_esc_hit};
+  if (CLOCKS == 2) begin : g_two_clk_data
+    always_ff @(posedge clk_i) begin
+      ooc_payload_q[NL*LW-1:0] <= payload_i[NL*LW-1:0];
+      {ooc_out_tag_q[NL*TAG_BITS-1:0], ooc_out_hit_q[NL-1:0]} <= {dut_out_tag[NL*TAG_BITS-1:0], dut_out_hit[NL-1:0]};
+      {ooc_esc_tag_q, ooc_esc_hit_q} <= {dut_esc_tag, dut_esc_hit};
+    end
+    always_ff @(posedge clk_wide) begin
+      ooc_payload_q[PW-1:NL*LW] <= payload_i[PW-1:NL*LW];
+      {ooc_out_tag_q[N*TAG_BITS-1:NL*TAG_BITS], ooc_out_hit_q[N-1:NL]} <=
+          {dut_out_tag[N*TAG_BITS-1:NL*TAG_BITS], dut_out_hit[N-1:NL]};
+    end
+  end else begin : g_one_clk_data
+    always_ff @(posedge clk_i) begin
+      ooc_payload_q <= payload_i;
+      {ooc_out_tag_q, ooc_out_hit_q} <= {dut_out_tag, dut_out_hit};
+      {ooc_esc_tag_q, ooc_esc_hit_q} <= {dut_esc_tag, dut_esc_hit};
+    end
   end
 
   // The payload's fields, lane by lane.
@@ -211,8 +264,8 @@ module ooc_cascade_wrapper #(
         .PIPELINE(PIPELINE),
         .RST_STAGES(RST_STAGES)
     ) u_wide (
-        .clk_i(clk_i),
-        .rst_i(ooc_rst_q),
+        .clk_i(clk_wide),
+        .rst_i(rst_wide),
         .in_valid_i(ooc_in_valid_q[N-1:NL]),
         .in_ready_o(dut_in_ready[N-1:NL]),
         .in_tag_i(tag[N*TAG_BITS-1:NL*TAG_BITS]),

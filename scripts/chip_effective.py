@@ -69,9 +69,11 @@ class Chip:
     placed: bool
     width: tuple[int, int]
     rate: dict[str, float]
-    cascade: dict | None = None  # {"lanes": per cascade, "wide": (C, D), "cascades": M, "plain": W}
+    # {"lanes": per cascade, "wide": (C, D), "cascades": M, "plain": W, and with two clocks
+    # "lane_rate": the lanes' box tests per second per speed grade (the rest is the plain units')}
+    cascade: dict | None = None
     fmax: dict[str, float] = field(default_factory=dict)
-    fmax_lut: dict[str, float] = field(default_factory=dict)  # arrays with two clocks: the fabric units'
+    fmax_lut: dict[str, float] = field(default_factory=dict)  # two clocks: the fabric / plain wide units'
 
 
 def _width(s: dict, key: str = "") -> tuple[int, int]:
@@ -109,11 +111,15 @@ def load_chip(arg: str) -> Chip:
         if design == "pluecker_cascade":
             cc = s.get("cascade_chip")  # a placed chip; else one cascade, extrapolated to a chip of them
             rate = cc["box_tests_per_s"] if cc else s["box_tests_per_s_per_chip"]
-            label = f"{name} ({'placed' if cc else 'extrapolated from one cascade'})"
-            return Chip(label, where, bool(cc), _width(s), rate,
-                        {"lanes": int(s["n_narrow"]), "wide": _width(s, "wide_"),
-                         "cascades": int(cc["cascades"]) if cc else 1,
-                         "plain": int(cc.get("wide_units", 0)) if cc else 0}, fmax)
+            two = s.get("clocks") == 2  # the plain wide units on a clock of their own
+            label = f"{name} ({'placed' if cc else 'extrapolated from one cascade'}{', two clocks' if two else ''})"
+            casc = {"lanes": int(s["n_narrow"]), "wide": _width(s, "wide_"),
+                    "cascades": int(cc["cascades"]) if cc else 1,
+                    "plain": int(cc.get("wide_units", 0)) if cc else 0}
+            if two:
+                casc["lane_rate"] = {sp: float(v) for sp, v in cc["lanes_box_tests_per_s"].items()}
+            return Chip(label, where, bool(cc), _width(s), rate, casc, fmax,
+                        fmax_lut=_fmax(s, where, "fmax_wide_mhz") if two else {})
         if design == "pluecker_intersector":
             return Chip(f"{name} (extrapolated from one unit)", where, False, _width(s),
                         s["box_tests_per_s_per_chip"], fmax=fmax)
@@ -169,7 +175,9 @@ def effective(chip: Chip, figs: dict, speed: str) -> dict | None:
         return {"raw": raw, "extra_percent": f["extra"], "effective": raw / (1 + f["extra"] / 100)}
     esc = f["escalated"]
     lanes, plain = chip.cascade["cascades"] * chip.cascade["lanes"], chip.cascade["plain"]
-    lane_rate = raw * lanes / (lanes + plain)  # every lane and plain unit at the same clock
+    lane_rate = chip.cascade.get("lane_rate", {}).get(speed)  # two clocks: the lanes' own
+    if lane_rate is None:
+        lane_rate = raw * lanes / (lanes + plain)  # every lane and plain unit at the same clock
     plain_rate = raw - lane_rate
     wide_rate = lane_rate / chip.cascade["lanes"]  # one wide unit per cascade of `lanes` lanes
     served = lane_rate if esc == 0 else min(lane_rate, wide_rate / esc)
@@ -289,13 +297,14 @@ def main(argv) -> int:
             "extra_percent": "100 * (box tests - exact answers' box tests) / exact answers' box tests "
                              "(pluecker cascade; cascades: the cascade's answers)",
             "served": "cascades: min(lane rate, wide unit rate / escalated share)",
-            "plain_rate": "cascade chips with plain wide units beside: their part of raw",
+            "plain_rate": "cascade chips with plain wide units beside: their part of raw (with two clocks "
+                          "at their own clock's Fmax, the lanes at clk_i's)",
             "effective": "(served or raw) / (1 + extra_percent / 100) "
                          "[+ plain_rate / (1 + plain_extra_percent / 100)]",
         },
         "size": args.size, "wide": width_name(wide),
         "chips": [{"name": c.name, "summary": c.source, "placed": c.placed, "width": width_name(c.width),
-                   "raw": c.rate, "fmax_mhz": c.fmax, **({"fmax_lut_mhz": c.fmax_lut} if c.fmax_lut else {}),
+                   "raw": c.rate, "fmax_mhz": c.fmax, **({("fmax_wide_mhz" if c.cascade else "fmax_lut_mhz"): c.fmax_lut} if c.fmax_lut else {}),
                    **({"cascade": {"lanes": c.cascade["lanes"], "wide": width_name(c.cascade["wide"]),
                                    "cascades": c.cascade["cascades"], "plain_wide_units": c.cascade["plain"]}}
                       if c.cascade else {})} for c in chips],

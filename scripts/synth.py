@@ -68,14 +68,16 @@ flops per unit (per cascade) so that no reset net spans the die (folder
 suffix _r<K>), and --floorplan dsp, each unit's MULT18X18D on consecutive
 sites of the DSP rows (scripts/floorplan.py; suffix _fp), or --floorplan
 grid (--array), as dsp and each unit without MULT18X18D anchored in a
-region of its own by four pinned flip-flops (suffix _grid). --clocks 2 (a
-mixed --array only) puts the fabric units on a clock of their own
-(clk_lut_i; the DSP units stay on clk_i), so that each kind runs at its own
-Fmax: nextpnr gets one target per clock (--freq, --freq-lut; an LPF file
-of FREQUENCY PORT lines, clocks.lpf in the run's folder), the summary keeps
-both clocks' Fmax (fmax_mhz: clk_i, fmax_lut_mhz: clk_lut_i) and the chip's
-box tests per second are NDSP x Fmax(clk_i) + NLUT x Fmax(clk_lut_i)
-(folder suffix _clk2).
+region of its own by four pinned flip-flops (suffix _grid). --clocks 2
+puts the fabric units of a mixed --array on a clock of their own
+(clk_lut_i; the DSP units stay on clk_i), or the plain wide units of a
+--cascade chip (+W; clk_wide_i, the cascades stay on clk_i), so that each
+kind runs at its own Fmax: nextpnr gets one target per clock (--freq,
+--freq-lut; an LPF file of FREQUENCY PORT lines, clocks.lpf in the run's
+folder), the summary keeps both clocks' Fmax (fmax_mhz: clk_i;
+fmax_lut_mhz: clk_lut_i, or fmax_wide_mhz: clk_wide_i) and the chip's box
+tests per second are NDSP x Fmax(clk_i) + NLUT x Fmax(clk_lut_i), or lanes
+x Fmax(clk_i) + W x Fmax(clk_wide_i) (folder suffix _clk2).
 """
 from __future__ import annotations
 
@@ -345,8 +347,19 @@ def nextpnr_cmd(nextpnr: str, netlist: Path, rundir: Path, speed: int, seed: int
             "--report", "report.json", "-l", "nextpnr.log", "-q", *extra]
 
 
-# The fabric units' clock of an array placed with --clocks 2.
+# The second clock of a chip placed with --clocks 2 (the summary's and a
+# run's keys for it: fmax_<key>_mhz, fmax_<key>, critical_path_<key>): an
+# array's fabric units', a cascade chip's plain wide units'.
 LUT_CLOCK = "clk_lut_i"
+WIDE_CLOCK = "clk_wide_i"
+SECOND_CLOCKS = {"array": (LUT_CLOCK, "lut", "fabric units' clock"),
+                 "cascade": (WIDE_CLOCK, "wide", "plain wide units' clock")}
+
+
+def second_clock(d: "Design") -> tuple[str, str, str] | None:
+    """A two-clock design's second clock: (port, key, what it clocks), or
+    None with one clock."""
+    return SECOND_CLOCKS[d.fields["unit"]] if d.params.get("CLOCKS", 1) == 2 else None
 
 
 def clock_lpf(targets: dict[str, float]) -> str:
@@ -498,12 +511,12 @@ class RipupWatch:
     def stalled(self) -> bool:
         return self.best is not None and self.iteration - self.best_iter >= self.patience
 
-    def message(self, freq: float, freq_lut: float | None = None) -> str:
-        """freq_lut: the fabric units' target of a chip with two clocks."""
+    def message(self, freq: float, freq_lut: float | None = None, clock2: str = LUT_CLOCK) -> str:
+        """freq_lut: the second clock's target (clock2) of a chip with two clocks."""
         overused, tmgfail = self.best or (0, 0)
         target, lower = f"the {freq:g} MHz target", "--freq (FREQ=)"
         if freq_lut is not None:
-            target = f"the {freq:g} / {freq_lut:g} MHz targets (clk_i / {LUT_CLOCK})"
+            target = f"the {freq:g} / {freq_lut:g} MHz targets (clk_i / {clock2})"
             lower = "--freq or --freq-lut (FREQ=, FREQ_LUT=)"
         return (f"rip-up stopped at router iteration {self.iteration}: no better than {tmgfail} arcs failing "
                 f"{target} ({overused} overused wires; iteration {self.best_iter}) in "
@@ -627,8 +640,9 @@ def run_pnr(job: dict) -> dict:
     if report.exists():
         report.unlink()
     two_clocks = job.get("freq_lut") is not None
+    clock2, key2 = job.get("clock2", LUT_CLOCK), job.get("key2", "lut")  # two clocks: the second's port, key
     if two_clocks:
-        (rundir / "clocks.lpf").write_text(clock_lpf({"clk_i": job["freq"], LUT_CLOCK: job["freq_lut"]}))
+        (rundir / "clocks.lpf").write_text(clock_lpf({"clk_i": job["freq"], clock2: job["freq_lut"]}))
     patience = job.get("ripup_patience", 0)
     watch = RipupWatch(patience) if patience else None
     t0 = time.monotonic()
@@ -640,7 +654,7 @@ def run_pnr(job: dict) -> dict:
     if est:
         out["pre_routing_mhz"] = est
     if rc is None:
-        out["error"] = watch.message(job["freq"], job.get("freq_lut"))
+        out["error"] = watch.message(job["freq"], job.get("freq_lut"), clock2)
         out["ripup_stalled"] = {"iteration": watch.iteration, "best_iteration": watch.best_iter,
                                 "overused": watch.best[0], "tmgfail": watch.best[1]}
         return out
@@ -652,11 +666,11 @@ def run_pnr(job: dict) -> dict:
     out["fmax"] = clocks.get("clk_i", next(iter(clocks.values()), None))
     by_clock = out.pop("critical_path_by_clock")
     if two_clocks:  # both must be timed; each has its own limit
-        out["fmax_lut"] = clocks.get(LUT_CLOCK)
-        if out["fmax"] is None or out["fmax_lut"] is None:
-            out["error"] = f"nextpnr timed {sorted(clocks)}, not both clk_i and {LUT_CLOCK}"
+        out[f"fmax_{key2}"] = clocks.get(clock2)
+        if out["fmax"] is None or out[f"fmax_{key2}"] is None:
+            out["error"] = f"nextpnr timed {sorted(clocks)}, not both clk_i and {clock2}"
         out["critical_path"] = by_clock.get("clk_i", out["critical_path"])
-        out["critical_path_lut"] = by_clock.get(LUT_CLOCK)
+        out[f"critical_path_{key2}"] = by_clock.get(clock2)
     return out
 
 
@@ -753,9 +767,11 @@ def _unit_summary(path: Path) -> dict | None:
         return None
 
 
-def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
+def cascade_chip_figures(design: Design, by_speed: dict, out: Path, by_speed_wide: dict | None = None) -> dict:
     """A placed chip of cascades: its own box tests per second (its lanes
-    and plain units x its median Fmax) beside the one-cascade extrapolation
+    and plain units x its median Fmax; with two clocks, by_speed_wide the
+    plain units' clock: lanes x Fmax(clk_i) + plain x Fmax(clk_wide_i),
+    and lanes_box_tests_per_s the lanes' share) beside the one-cascade extrapolation
     (the summary of the same cascade placed alone, out/cascade_<N>_..., when
     there is one; chips without plain units) and beside the same cascades
     and plain units each at its own Fmax placed alone (the plain units'
@@ -763,8 +779,15 @@ def cascade_chip_figures(design: Design, by_speed: dict, out: Path) -> dict:
     p, f = design.params, design.fields
     lanes = p["N_CASCADES"] * p["N_NARROW"]
     plain = p.get("N_WIDE", 0)
-    placed = {sp: round(st["median"] * 1e6 * (lanes + plain)) for sp, st in by_speed.items()}
+    if by_speed_wide is None:
+        placed = {sp: round(st["median"] * 1e6 * (lanes + plain)) for sp, st in by_speed.items()}
+    else:
+        placed = {sp: round((st["median"] * lanes + by_speed_wide[sp]["median"] * plain) * 1e6)
+                  for sp, st in by_speed.items() if sp in by_speed_wide}
     fig = {"cascades": p["N_CASCADES"], "lanes": lanes, "wide_units": plain, "box_tests_per_s": placed}
+    if by_speed_wide is not None:
+        fig["lanes_box_tests_per_s"] = {sp: round(by_speed[sp]["median"] * 1e6 * lanes) for sp in placed}
+        fig["clocks"] = {"clk_i": f"{p['N_CASCADES']} cascades ({lanes} lanes)", WIDE_CLOCK: f"{plain} plain wide units"}
     pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
     one = out / (f"cascade_{p['N_NARROW']}_{f['coord_bits']}x{f['dir_bits']}_{f['wide_coord_bits']}x"
                  f"{f['wide_dir_bits']}" + pipe)
@@ -808,15 +831,18 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
     by_speed: dict[str, dict] = {}
     by_speed_lut: dict[str, dict] = {}
     limits: dict[str, dict] = {}
-    limits_lut: dict[str, dict] = {}  # two clocks: the fabric units' clock
-    two_clocks = design.params.get("CLOCKS", 1) == 2
+    limits_lut: dict[str, dict] = {}  # two clocks: the second clock's (key2: fabric or plain wide units)
+    clock2 = second_clock(design)
+    two_clocks = clock2 is not None
+    key2 = clock2[1] if clock2 else "lut"
     for speed in args.speed_list:
         ok = [r for r in runs if r["speed"] == speed and r.get("fmax") and "error" not in r]
         if not ok:
             continue
         by_speed[str(speed)], limits[str(speed)] = clock_figures(ok, "fmax", "critical_path")
         if two_clocks:
-            by_speed_lut[str(speed)], limits_lut[str(speed)] = clock_figures(ok, "fmax_lut", "critical_path_lut")
+            by_speed_lut[str(speed)], limits_lut[str(speed)] = clock_figures(ok, f"fmax_{key2}",
+                                                                             f"critical_path_{key2}")
     row = design.row
     u = utilisation(ys, runs)
     summary = {
@@ -843,10 +869,10 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
         "utilisation": u,
         "yosys_cells": ys["cells"],
         "fmax_mhz": by_speed,
-        **({"fmax_lut_mhz": by_speed_lut, "target_lut_mhz": args.freq_lut} if two_clocks else {}),
+        **({f"fmax_{key2}_mhz": by_speed_lut, f"target_{key2}_mhz": args.freq_lut} if two_clocks else {}),
         **chip_figures(u, by_speed, design.tests_per_clock),
         "critical_path": limits,
-        **({"critical_path_lut": limits_lut} if two_clocks else {}),
+        **({f"critical_path_{key2}": limits_lut} if two_clocks else {}),
         "runs": [{k: v for k, v in r.items() if k != "utilisation"} for r in runs],
         **({"placement_screen": screen} if screen else {}),  # --place-first: every seed's estimate
         "pnr": not args.no_pnr,
@@ -854,7 +880,8 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
     if design.fields.get("unit") == "array":
         summary["array"] = array_figures(design, by_speed, Path(args.out), by_speed_lut if two_clocks else None)
     if design.fields.get("unit") == "cascade" and (design.params["N_CASCADES"] > 1 or design.params.get("N_WIDE")):
-        summary["cascade_chip"] = cascade_chip_figures(design, by_speed, Path(args.out))
+        summary["cascade_chip"] = cascade_chip_figures(design, by_speed, Path(args.out),
+                                                       by_speed_lut if two_clocks else None)
     with open(base / "summary.json", "w") as f:
         json.dump(summary, f, indent=2)
         f.write("\n")
@@ -899,6 +926,9 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
                 line += " (no one-unit summary in this --out folder to compare with)"
         elif sm.get("cascade_chip"):  # a chip of cascades (and plain units): its own rate
             a = sm["cascade_chip"]
+            if sm.get("fmax_wide_mhz"):
+                line += "  plain wide units' clock " + ", ".join(
+                    f"speed {sp}: {f['median']:.1f} MHz" for sp, f in sm["fmax_wide_mhz"].items()) + ";"
             line += (f"  {a['cascades']} cascades, {a['lanes']} lanes, {a['wide_units']} plain units placed; "
                      + _placed_rates(a, "one-cascade extrapolation", "same cascades and units placed alone"))
         elif sm.get("units_per_chip"):
@@ -906,7 +936,8 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
         print(line)
     for sm in summaries:
-        for key, clock in (("critical_path", ""), ("critical_path_lut", " (fabric units' clock)")):
+        for key, clock in (("critical_path", ""), ("critical_path_lut", " (fabric units' clock)"),
+                           ("critical_path_wide", " (plain wide units' clock)")):
             for s, cp in sm.get(key, {}).items():
                 if "delay_ns" not in cp:
                     continue
@@ -1078,17 +1109,24 @@ def cascade_design(count: int, n: int, nc: int, nd: int, wc: int, wd: int, plain
            "multiplier": (f"{count} x " if count > 1 else "")
            + f"{n} narrow units ({narrow['multiplier']}), one wide ({wide['multiplier']})"
            + (f"; {plain} plain wide units ({plain_row['multiplier']})" if plain else "")}
+    if args.clocks == 2 and not plain:
+        raise FlowError(f"--clocks 2 puts a cascade chip's plain wide units on a clock of their own: "
+                        "--cascade needs some (+W)")
+    two = args.clocks == 2
     many = f"{count}x" if count > 1 else ""
     name = (f"cascade_{many}{n}_{nc}x{nd}_{wc}x{wd}" + (f"_w{plain}" if plain else "")
-            + (f"_p{args.pipeline}" if args.pipeline else ""))
+            + (f"_p{args.pipeline}" if args.pipeline else "") + ("_clk2" if two else ""))
     params = {"N_CASCADES": count, "N_NARROW": n, "NARROW_COORD_BITS": nc, "NARROW_DIR_BITS": nd,
               "WIDE_COORD_BITS": wc, "WIDE_DIR_BITS": wd, "TAG_BITS": args.tag_bits, "PIPELINE": args.pipeline,
               "RST_STAGES": args.rst_stages}
     if plain:
         params["N_WIDE"] = plain
+    if two:  # one-clock designs keep the parameters they had
+        params["CLOCKS"] = 2
     return Design(name, "ooc_cascade_wrapper", CASCADE_WRAPPER, "pluecker_cascade", params, row,
-                  {"config": f"cascade {many}{n}x{nc}x{nd}>{wc}x{wd}" + (f"+{plain}x{wc}x{wd}" if plain else ""),
-                   "unit": "cascade", "name": name,
+                  {"config": f"cascade {many}{n}x{nc}x{nd}>{wc}x{wd}" + (f"+{plain}x{wc}x{wd}" if plain else "")
+                   + (" 2 clocks" if two else ""),
+                   "unit": "cascade", "name": name, "clocks": args.clocks,
                    "coord_bits": nc, "dir_bits": nd, "wide_coord_bits": wc, "wide_dir_bits": wd,
                    "pipeline": args.pipeline, "rst_stages": args.rst_stages, "n_cascades": count, "n_narrow": n,
                    "n_wide_units": plain},
@@ -1173,11 +1211,13 @@ def pnr_job(d: Design, speed: int, seed: int, args, nextpnr: str, place_only: bo
     own)."""
     base = Path(args.out) / d.name
     rundir = base / "pnr" / f"speed{speed}_seed{seed}{'_placed' if place_only else ''}"
-    two = d.params.get("CLOCKS", 1) == 2
+    clock2 = second_clock(d)
+    two = clock2 is not None
     return {"speed": speed, "seed": seed, "rundir": rundir, "base": base,
             "netlist": base / "netlist.json", "top": d.top, "freq": args.freq,
             "ripup_patience": 0 if place_only else (ripup_patience(args) or 0),
             "freq_lut": args.freq_lut if two else None,  # two clocks: run_pnr writes clocks.lpf
+            **({"clock2": clock2[0], "key2": clock2[1]} if two else {}),
             "cmd": nextpnr_cmd(nextpnr, base / "netlist.json", rundir, speed, seed, args.freq, d.top,
                                args.router, args.placer,
                                tuple(args.nextpnr_args) + (("--no-route",) if place_only else ()),
@@ -1237,7 +1277,7 @@ def flow(specs: list[tuple], designs: list[Design], args, tools: dict, yosys: st
             seeds_of, screens, place_errors = place_first(built, args, nextpnr)
             errors += place_errors
         say(f"synth: nextpnr at speeds {args.speeds}, seeds {args.seeds_text}, target {args.freq:g} MHz"
-            + (f" (fabric units' clock {args.freq_lut:g} MHz)" if args.clocks == 2 else "")
+            + (f" (the second clock's {args.freq_lut:g} MHz)" if args.clocks == 2 else "")
             + (f", routing the best {args.place_first} placements" if args.place_first else ""))
         pnr_jobs, of_design = [], {}
         for d in built:
@@ -1282,10 +1322,12 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
     p.add_argument("--speeds", default="6 8", help="speed grades, e.g. '6 8'")
     p.add_argument("--freq", type=float, default=250.0, help="nextpnr target (MHz)")
     p.add_argument("--clocks", type=int, choices=(1, 2), default=1,
-                   help="--array: 2 puts the fabric units on a clock of their own (clk_lut_i, target "
-                        "--freq-lut), each kind at its own Fmax; adds _clk2 to the output folder's name")
+                   help="2: a second clock, target --freq-lut: a mixed --array's fabric units on clk_lut_i, "
+                        "or a --cascade chip's plain wide units (+W) on clk_wide_i, each kind at its own "
+                        "Fmax; adds _clk2 to the output folder's name")
     p.add_argument("--freq-lut", type=float, default=None,
-                   help="--clocks 2: nextpnr target of the fabric units' clock (MHz; default --freq)")
+                   help="--clocks 2: nextpnr target of the second clock (clk_lut_i or clk_wide_i; MHz; "
+                        "default --freq)")
     p.add_argument("--router", choices=("router1", "router2"), default="router1",
                    help="nextpnr router (router2 converges where router1 stalls on a congested whole chip)")
     p.add_argument("--placer", choices=("heap", "static", "sa"), default="heap",
@@ -1345,10 +1387,11 @@ def parse_args(argv: list[str]) -> argparse.Namespace:
         p.error("--mul-dsp is a parameter of the binary32 units (--unit float or smits)")
     if args.smoke:
         args.seeds, args.speeds = "1", "8"
-    if args.clocks == 2 and not args.array:
-        p.error("--clocks 2 is for a mixed --array (DSP units on clk_i, fabric units on clk_lut_i)")
+    if args.clocks == 2 and not (args.array or args.cascade):
+        p.error("--clocks 2 is for a mixed --array (DSP units on clk_i, fabric units on clk_lut_i) or a "
+                "--cascade chip with plain wide units (cascades on clk_i, plain units on clk_wide_i)")
     if args.freq_lut is not None and args.clocks != 2:
-        p.error("--freq-lut is the target of the fabric units' clock: give --clocks 2 too")
+        p.error("--freq-lut is the target of the second clock: give --clocks 2 too")
     if args.floorplan == "grid" and not args.array:
         p.error("--floorplan grid anchors the units of an --array chip (--floorplan dsp pins the MULT18X18D "
                 "of other designs)")

@@ -208,6 +208,37 @@ def test_cascade_yosys(tmp_path):
     assert bad.returncode == 1 and "[M*]N:CxD:WCxWD[+W]" in bad.stderr, bad.stderr
 
 
+def test_cascade_two_clocks_yosys(tmp_path):
+    """A cascade chip with two clocks through Yosys (--cascade
+    1*2:8x8:16x16+1 --clocks 2 --no-pnr): the cascade's flip-flops (its
+    lanes, its wide unit) on clk_i, the plain wide unit's (u_wide) on
+    clk_wide_i, and the harness's flops of each lane on its lane's clock."""
+    reason = _tools_missing()
+    if reason:
+        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "1*2:8x8:16x16+1",
+                          "--clocks", "2", "--rst-stages", "1", "--no-pnr", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --cascade --clocks 2 failed:\n{res.stdout}\n{res.stderr}"
+    base = tmp_path / "cascade_2_8x8_16x16_w1_clk2_r1"
+    s = json.loads((base / "summary.json").read_text())
+    assert s["clocks"] == 2 and s["name"] == base.name, s
+    top = json.loads((base / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]
+    clk = {p: top["ports"][p]["bits"][0] for p in ("clk_i", "clk_wide_i")}
+    ffs = [(n, c["connections"]["CLK"][0]) for n, c in top["cells"].items() if c["type"] == "TRELLIS_FF"]
+    cascade = {b for n, b in ffs if n.startswith("g_cascade[0].")}
+    wide = {b for n, b in ffs if n.startswith("g_wide.u_wide.")}
+    assert cascade == {clk["clk_i"]} and wide == {clk["clk_wide_i"]}, (cascade, wide, clk)
+    # The harness: the reset chains of lanes 0 and 1 (the cascade's), of
+    # the escalation stream and of the cascade (chains 3, 4) on clk_i, lane
+    # 2's (the plain unit's) on clk_wide_i; of the three lanes' in_ready
+    # flops one on clk_wide_i.
+    chains = {int(n[len("g_chain["):n.index("]")]): b for n, b in ffs if n.startswith("g_chain[")}
+    assert chains == {0: clk["clk_i"], 1: clk["clk_i"], 2: clk["clk_wide_i"], 3: clk["clk_i"], 4: clk["clk_i"]}, chains
+    ready = sorted(b for n, b in ffs if n.startswith("in_ready_o_TRELLIS_FF_Q"))
+    assert ready == sorted([clk["clk_i"], clk["clk_i"], clk["clk_wide_i"]]), ready
+
+
 def test_array_two_clocks_smoke(tmp_path):
     """A mixed two-unit array at 6/6 with two clocks (--clocks 2): the DSP
     unit (u_dut) on clk_i, the fabric unit (g_lut_clk.u_dut) on clk_lut_i,
@@ -277,7 +308,8 @@ def test_array_rom_smoke(tmp_path):
 
 
 def test_two_clocks_refused(tmp_path, capsys):
-    """--clocks 2 only for a mixed --array; --freq-lut only with it (no tools)."""
+    """--clocks 2 only for a mixed --array or a cascade chip with plain
+    units; --freq-lut only with it (no tools)."""
     for argv, why in ((["--clocks", "2"], "--clocks 2 is for a mixed --array"),
                       (["--array", "1x1", "--freq-lut", "200"], "--freq-lut is the target"),
                       (["--array", "1x1", "--clocks", "2", "--freq-lut", "0"], "targets must be positive")):
@@ -289,6 +321,8 @@ def test_two_clocks_refused(tmp_path, capsys):
     assert synth.main(["--array", "1x1x1", "--clocks", "2", "--no-pnr", "--coord-bits", "6", "--dir-bits", "6",
                        "--pipeline", "2", "--out", str(tmp_path)]) == 1
     assert "--clocks 2 takes no block-RAM table units" in capsys.readouterr().err
+    assert synth.main(["--cascade", "2:8x8:16x16", "--clocks", "2", "--no-pnr", "--out", str(tmp_path)]) == 1
+    assert "plain wide units on a clock of their own: --cascade needs some (+W)" in capsys.readouterr().err
     for bad in ("1x1x1x1", "1x-1", "0x0x0"):
         with pytest.raises(synth.FlowError, match=f"--array '{bad}'"):
             synth.parse_array(bad)
@@ -372,6 +406,14 @@ def test_cascade_chip_figures_same_units_alone(tmp_path):
                         dict(params, N_CASCADES=5, N_WIDE=0), {}, fields)
     fig = synth.cascade_chip_figures(pure, {"8": {"median": 100.0}}, tmp_path)
     assert fig["of_extrapolation"] == {"8": 0.25} and fig["of_same_units_alone"] == {"8": 0.5}
+    # Two clocks: the lanes at clk_i's 155 MHz, the plain units at
+    # clk_wide_i's 240: 4 x 155 + 3 x 240 = 1,340 M, 86.5 % of 1,550 M.
+    two = synth.Design("cascade_2x2_8x8_16x16_w3_p1_clk2", "ooc_cascade_wrapper", Path("w.sv"),
+                       "pluecker_cascade", dict(params, CLOCKS=2), {}, dict(fields, unit="cascade"))
+    assert synth.second_clock(two) == ("clk_wide_i", "wide", "plain wide units' clock")
+    fig = synth.cascade_chip_figures(two, {"8": {"median": 155.0}}, tmp_path, {"8": {"median": 240.0}})
+    assert fig["box_tests_per_s"] == {"8": 1_340_000_000} and fig["lanes_box_tests_per_s"] == {"8": 620_000_000}
+    assert fig["of_same_units_alone"] == {"8": 0.865} and set(fig["clocks"]) == {"clk_i", "clk_wide_i"}
 
 
 def test_harness_flip_flops(tmp_path):

@@ -69,6 +69,16 @@ def test_figures_follow_from_the_summaries(tmp_path):
         "clocks": 2, "fmax_mhz": fmax(150.0), "fmax_lut_mhz": fmax(120.0),
         "array": {"units": 5, "box_tests_per_s": {"8": (2 * 150 + 3 * 120) * 1e6}}})
     chips.append(two)
+    # a cascade chip with two clocks: 2 cascades of 6 6/6 lanes at 90 MHz
+    # (clk_i), 5 plain 16/16 units at 200 MHz (clk_wide_i)
+    two_c = write(tmp_path / "cascade_2x6_6x6_w5_clk2", {
+        "design": "pluecker_cascade", "name": "cascade_2x6_6x6_w5_clk2", "coord_bits": 6, "dir_bits": 6,
+        "wide_coord_bits": 16, "wide_dir_bits": 16, "n_narrow": 6, "n_cascades": 2, "n_wide_units": 5,
+        "pnr": True, "clocks": 2, "fmax_mhz": fmax(90.0), "fmax_wide_mhz": fmax(200.0),
+        "cascade_chip": {"cascades": 2, "lanes": 12, "wide_units": 5,
+                         "box_tests_per_s": {"8": (12 * 90 + 5 * 200) * 1e6},
+                         "lanes_box_tests_per_s": {"8": 12 * 90 * 1e6}}})
+    chips.append(two_c)
     r = run(chips, tmp_path)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "[chip-effective] [1/1] sphere:500: done in" in r.stdout  # progress
@@ -81,7 +91,7 @@ def test_figures_follow_from_the_summaries(tmp_path):
     names = [c["name"] for c in res["chips"]]
     assert names == ["array_8x8 (placed)", "16x16 (extrapolated from one unit)", "cascade_6x2_8x8 (placed)",
                      "cascade_3x6_6x6 (placed)", "cascade_2x6_6x6_w5 (placed)",
-                     "array_8x8_clk2 (placed, two clocks)"]
+                     "array_8x8_clk2 (placed, two clocks)", "cascade_2x6_6x6_w5_clk2 (placed, two clocks)"]
 
     x8 = narrow[(8, 8)]["narrow_alone"]["extra_percent"]["box_tests"]
     assert x8 > 0  # a narrow unit's false hits cost work on this scene
@@ -119,6 +129,15 @@ def test_figures_follow_from_the_summaries(tmp_path):
     # two clocks: the summary's rate (the sum over both clocks) at the 8/8 extra work
     assert got[names[5]]["8"]["effective"] == pytest.approx(660e6 / (1 + x8 / 100))
     assert res["chips"][5]["fmax_mhz"] == {"8": 150.0} and res["chips"][5]["fmax_lut_mhz"] == {"8": 120.0}
+
+    # a cascade chip with two clocks: the lanes (and their wide units) at
+    # clk_i's 90 MHz, the plain units at clk_wide_i's 200 MHz, not the
+    # raw rate split by unit count
+    e = got[names[6]]["8"]
+    assert e["raw"] == pytest.approx(2080e6) and e["wide_saturated"]
+    assert e["served"] == pytest.approx(2 * 90e6 / esc6) and e["plain_rate"] == pytest.approx(5 * 200e6)
+    assert e["effective"] == pytest.approx(2 * 90e6 / esc6 / (1 + xc6 / 100) + 5 * 200e6 / (1 + xw / 100))
+    assert res["chips"][6]["fmax_mhz"] == {"8": 90.0} and res["chips"][6]["fmax_wide_mhz"] == {"8": 200.0}
 
     md = (out / "effective.md").read_text()
     assert "| array_8x8 (placed) | 8/8 | 3.97 G |" in md and "wide saturated" in md
