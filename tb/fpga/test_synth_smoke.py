@@ -163,6 +163,21 @@ def test_synth_flag_yosys(tmp_path):
     assert bad.returncode == 2 and "--synth-flag" in bad.stderr, bad.stderr
 
 
+def _cascade_yosys(tmp_path, spec: str, *flags: str) -> tuple[Path, dict]:
+    """synth.py --cascade spec flags --no-pnr (Yosys only) into tmp_path:
+    the design's folder and its summary."""
+    reason = _tools_missing()
+    if reason:
+        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
+    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", spec, *flags,
+                          "--no-pnr", "--out", str(tmp_path)], capture_output=True, text=True, timeout=1800)
+    assert res.returncode == 0, f"synth.py --cascade {spec} {' '.join(flags)} failed:\n{res.stdout}\n{res.stderr}"
+    (folder,) = [d for d in tmp_path.iterdir() if d.is_dir() and d.name.startswith("cascade_")]
+    s = json.loads((folder / "summary.json").read_text())
+    assert s["name"] == folder.name, s
+    return folder, s
+
+
 def test_cascade_yosys(tmp_path):
     """Two pluecker_cascades and one plain wide unit through Yosys
     (--cascade 2*2:8x8:16x16+1 --no-pnr, the chip harness of several
@@ -173,15 +188,8 @@ def test_cascade_yosys(tmp_path):
     floorplan (--floorplan dsp): every copy of the reset is a flip-flop of
     its own in the netlist (Yosys merges identical flops unless kept), and
     each wide unit's twelve blocks carry consecutive sites."""
-    reason = _tools_missing()
-    if reason:
-        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
-    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "2*2:8x8:16x16+1",
-                          "--rst-stages", "2", "--floorplan", "dsp", "--no-pnr", "--out", str(tmp_path)],
-                         capture_output=True, text=True, timeout=1800)
-    assert res.returncode == 0, f"synth.py --cascade failed:\n{res.stdout}\n{res.stderr}"
-    folder = tmp_path / "cascade_2x2_8x8_16x16_w1_r2_fp"
-    s = json.loads((folder / "summary.json").read_text())
+    folder, s = _cascade_yosys(tmp_path, "2*2:8x8:16x16+1", "--rst-stages", "2", "--floorplan", "dsp")
+    assert folder.name == "cascade_2x2_8x8_16x16_w1_r2_fp"
     assert s["rst_stages"] == 2 and s["floorplan"] == "dsp" and s["name"] == folder.name
     cells = json.loads((folder / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]["cells"]
     # The reset tree: the harness's reset flop, then chains of two per
@@ -213,16 +221,8 @@ def test_cascade_two_clocks_yosys(tmp_path):
     1*2:8x8:16x16+1 --clocks 2 --no-pnr): the cascade's flip-flops (its
     lanes, its wide unit) on clk_i, the plain wide unit's (u_wide) on
     clk_wide_i, and the harness's flops of each lane on its lane's clock."""
-    reason = _tools_missing()
-    if reason:
-        pytest.fail(f"{reason}; `make setup` installs the pinned venv")
-    res = subprocess.run([sys.executable, str(REPO / "scripts" / "synth.py"), "--cascade", "1*2:8x8:16x16+1",
-                          "--clocks", "2", "--rst-stages", "1", "--no-pnr", "--out", str(tmp_path)],
-                         capture_output=True, text=True, timeout=1800)
-    assert res.returncode == 0, f"synth.py --cascade --clocks 2 failed:\n{res.stdout}\n{res.stderr}"
-    base = tmp_path / "cascade_2_8x8_16x16_w1_clk2_r1"
-    s = json.loads((base / "summary.json").read_text())
-    assert s["clocks"] == 2 and s["name"] == base.name, s
+    base, s = _cascade_yosys(tmp_path, "1*2:8x8:16x16+1", "--clocks", "2", "--rst-stages", "1")
+    assert base.name == "cascade_2_8x8_16x16_w1_clk2_r1" and s["clocks"] == 2, s
     top = json.loads((base / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]
     clk = {p: top["ports"][p]["bits"][0] for p in ("clk_i", "clk_wide_i")}
     ffs = [(n, c["connections"]["CLK"][0]) for n, c in top["cells"].items() if c["type"] == "TRELLIS_FF"]
