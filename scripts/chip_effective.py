@@ -73,7 +73,8 @@ class Chip:
     # "lane_rate": the lanes' box tests per second per speed grade (the rest is the plain units')}
     cascade: dict | None = None
     fmax: dict[str, float] = field(default_factory=dict)
-    fmax_lut: dict[str, float] = field(default_factory=dict)  # two clocks: the fabric / plain wide units'
+    fmax2: dict[str, float] = field(default_factory=dict)  # two clocks: the second clock's Fmax
+    fmax2_key: str = ""  # ... and its summary key (fmax_lut_mhz: fabric units, fmax_wide_mhz: plain wide units)
 
 
 def _width(s: dict, key: str = "") -> tuple[int, int]:
@@ -107,7 +108,7 @@ def load_chip(arg: str) -> Chip:
             rate = s["array"]["box_tests_per_s"]  # with two clocks: NDSP x Fmax + NLUT x the fabric clock's
             two = s.get("clocks") == 2
             return Chip(f"{name} (placed{', two clocks' if two else ''})", where, True, _width(s), rate,
-                        fmax=fmax, fmax_lut=_fmax(s, where, "fmax_lut_mhz") if two else {})
+                        fmax=fmax, fmax2=_fmax(s, where, "fmax_lut_mhz") if two else {}, fmax2_key="fmax_lut_mhz")
         if design == "pluecker_cascade":
             cc = s.get("cascade_chip")  # a placed chip; else one cascade, extrapolated to a chip of them
             rate = cc["box_tests_per_s"] if cc else s["box_tests_per_s_per_chip"]
@@ -119,7 +120,7 @@ def load_chip(arg: str) -> Chip:
             if two:
                 casc["lane_rate"] = {sp: float(v) for sp, v in cc["lanes_box_tests_per_s"].items()}
             return Chip(label, where, bool(cc), _width(s), rate, casc, fmax,
-                        fmax_lut=_fmax(s, where, "fmax_wide_mhz") if two else {})
+                        fmax2=_fmax(s, where, "fmax_wide_mhz") if two else {}, fmax2_key="fmax_wide_mhz")
         if design == "pluecker_intersector":
             return Chip(f"{name} (extrapolated from one unit)", where, False, _width(s),
                         s["box_tests_per_s_per_chip"], fmax=fmax)
@@ -304,7 +305,7 @@ def main(argv) -> int:
         },
         "size": args.size, "wide": width_name(wide),
         "chips": [{"name": c.name, "summary": c.source, "placed": c.placed, "width": width_name(c.width),
-                   "raw": c.rate, "fmax_mhz": c.fmax, **({("fmax_wide_mhz" if c.cascade else "fmax_lut_mhz"): c.fmax_lut} if c.fmax_lut else {}),
+                   "raw": c.rate, "fmax_mhz": c.fmax, **({c.fmax2_key: c.fmax2} if c.fmax2 else {}),
                    **({"cascade": {"lanes": c.cascade["lanes"], "wide": width_name(c.cascade["wide"]),
                                    "cascades": c.cascade["cascades"], "plain_wide_units": c.cascade["plain"]}}
                       if c.cascade else {})} for c in chips],

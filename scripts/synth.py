@@ -787,7 +787,8 @@ def cascade_chip_figures(design: Design, by_speed: dict, out: Path, by_speed_wid
     fig = {"cascades": p["N_CASCADES"], "lanes": lanes, "wide_units": plain, "box_tests_per_s": placed}
     if by_speed_wide is not None:
         fig["lanes_box_tests_per_s"] = {sp: round(by_speed[sp]["median"] * 1e6 * lanes) for sp in placed}
-        fig["clocks"] = {"clk_i": f"{p['N_CASCADES']} cascades ({lanes} lanes)", WIDE_CLOCK: f"{plain} plain wide units"}
+        fig["clocks"] = {"clk_i": f"{p['N_CASCADES']} cascades ({lanes} lanes)",
+                         WIDE_CLOCK: f"{plain} plain wide units"}
     pipe = f"_p{p['PIPELINE']}" if p["PIPELINE"] else ""
     one = out / (f"cascade_{p['N_NARROW']}_{f['coord_bits']}x{f['dir_bits']}_{f['wide_coord_bits']}x"
                  f"{f['wide_dir_bits']}" + pipe)
@@ -888,6 +889,15 @@ def write_summary(base: Path, design: Design, args, ys: dict, runs: list[dict], 
     return summary
 
 
+def _second_clock_text(sm: dict) -> str:
+    """A two-clock chip's second clock's Fmax for its summary line ('' with one clock)."""
+    for _, key, what in SECOND_CLOCKS.values():
+        if sm.get(f"fmax_{key}_mhz"):
+            return f"  {what} " + ", ".join(
+                f"speed {sp}: {f['median']:.1f} MHz" for sp, f in sm[f"fmax_{key}_mhz"].items()) + ";"
+    return ""
+
+
 def _placed_rates(fig: dict, extrapolation: str, alone: str) -> str:
     """A placed chip's box tests per second and what it keeps of the
     extrapolation and of the same units alone (array_figures,
@@ -917,18 +927,14 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             line += f"  {cell:>26}"
         if sm.get("array"):  # the placed array's own rate, and what it keeps of the extrapolation
             a = sm["array"]
-            if sm.get("fmax_lut_mhz"):
-                line += "  fabric units' clock " + ", ".join(
-                    f"speed {sp}: {f['median']:.1f} MHz" for sp, f in sm["fmax_lut_mhz"].items()) + ";"
+            line += _second_clock_text(sm)
             line += f"  {a['units']} units placed; " + _placed_rates(
                 a, "one-unit extrapolation", "same units at their one-unit Fmax")
             if not a.get("of_same_units_alone") and not a.get("extrapolation"):
                 line += " (no one-unit summary in this --out folder to compare with)"
         elif sm.get("cascade_chip"):  # a chip of cascades (and plain units): its own rate
             a = sm["cascade_chip"]
-            if sm.get("fmax_wide_mhz"):
-                line += "  plain wide units' clock " + ", ".join(
-                    f"speed {sp}: {f['median']:.1f} MHz" for sp, f in sm["fmax_wide_mhz"].items()) + ";"
+            line += _second_clock_text(sm)
             line += (f"  {a['cascades']} cascades, {a['lanes']} lanes, {a['wide_units']} plain units placed; "
                      + _placed_rates(a, "one-cascade extrapolation", "same cascades and units placed alone"))
         elif sm.get("units_per_chip"):
@@ -936,8 +942,8 @@ def print_table(summaries: list[dict], speeds: list[int]) -> None:
             line += f"  {sm['units_per_chip']} units/chip ({sm['limited_by']}); box tests/s per chip {chip}"
         print(line)
     for sm in summaries:
-        for key, clock in (("critical_path", ""), ("critical_path_lut", " (fabric units' clock)"),
-                           ("critical_path_wide", " (plain wide units' clock)")):
+        for key, clock in (("critical_path", ""), *((f"critical_path_{k}", f" ({what})")
+                                                    for _, k, what in SECOND_CLOCKS.values())):
             for s, cp in sm.get(key, {}).items():
                 if "delay_ns" not in cp:
                     continue

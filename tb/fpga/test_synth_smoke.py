@@ -163,6 +163,15 @@ def test_synth_flag_yosys(tmp_path):
     assert bad.returncode == 2 and "--synth-flag" in bad.stderr, bad.stderr
 
 
+def _clocked_ffs(base: Path, top: str, clock2: str) -> tuple[dict, list]:
+    """A two-clock netlist's clock nets ({port: net} of clk_i and clock2)
+    and its flip-flops as (name, clock net)."""
+    mod = json.loads((base / "netlist.json").read_text())["modules"][top]
+    clk = {p: mod["ports"][p]["bits"][0] for p in ("clk_i", clock2)}
+    ffs = [(n, c["connections"]["CLK"][0]) for n, c in mod["cells"].items() if c["type"] == "TRELLIS_FF"]
+    return clk, ffs
+
+
 def _cascade_yosys(tmp_path, spec: str, *flags: str) -> tuple[Path, dict]:
     """synth.py --cascade spec flags --no-pnr (Yosys only) into tmp_path:
     the design's folder and its summary."""
@@ -223,9 +232,7 @@ def test_cascade_two_clocks_yosys(tmp_path):
     clk_wide_i, and the harness's flops of each lane on its lane's clock."""
     base, s = _cascade_yosys(tmp_path, "1*2:8x8:16x16+1", "--clocks", "2", "--rst-stages", "1")
     assert base.name == "cascade_2_8x8_16x16_w1_clk2_r1" and s["clocks"] == 2, s
-    top = json.loads((base / "netlist.json").read_text())["modules"]["ooc_cascade_wrapper"]
-    clk = {p: top["ports"][p]["bits"][0] for p in ("clk_i", "clk_wide_i")}
-    ffs = [(n, c["connections"]["CLK"][0]) for n, c in top["cells"].items() if c["type"] == "TRELLIS_FF"]
+    clk, ffs = _clocked_ffs(base, "ooc_cascade_wrapper", "clk_wide_i")
     cascade = {b for n, b in ffs if n.startswith("g_cascade[0].")}
     wide = {b for n, b in ffs if n.startswith("g_wide.u_wide.")}
     assert cascade == {clk["clk_i"]} and wide == {clk["clk_wide_i"]}, (cascade, wide, clk)
@@ -266,9 +273,7 @@ def test_array_two_clocks_smoke(tmp_path):
     assert (dsp, lut) == (run["fmax"], run["fmax_lut"])
     assert s["array"]["box_tests_per_s"]["8"] == round((dsp + lut) * 1e6)
     # Each unit's flip-flops on its own clock net.
-    top = json.loads((base / "netlist.json").read_text())["modules"]["ooc_array_wrapper"]
-    clk = {p: top["ports"][p]["bits"][0] for p in ("clk_i", "clk_lut_i")}
-    ffs = [(n, c["connections"]["CLK"][0]) for n, c in top["cells"].items() if c["type"] == "TRELLIS_FF"]
+    clk, ffs = _clocked_ffs(base, "ooc_array_wrapper", "clk_lut_i")
     dsp_ffs = {b for n, b in ffs if n.startswith("u_dut.g_unit[0].")}
     lut_ffs = {b for n, b in ffs if n.startswith("g_lut_clk.u_dut.g_unit[0].")}
     assert dsp_ffs == {clk["clk_i"]} and lut_ffs == {clk["clk_lut_i"]}, (dsp_ffs, lut_ffs, clk)
